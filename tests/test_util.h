@@ -1,0 +1,60 @@
+#pragma once
+// Helpers shared by the tests: the shared real-data folder and running the CLI.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+namespace vilslam::test {
+
+// Absolute path of a file or folder in ../shared/data, or "" when the data is absent.
+inline std::string shared_data(const std::string& relative) {
+  const std::filesystem::path p = std::filesystem::path(VILSLAM_SHARED_DATA) / relative;
+  return std::filesystem::exists(p) ? p.string() : std::string();
+}
+
+// Skips the current test with a message naming the missing path.
+#define VILSLAM_REQUIRE_SHARED_DATA(var, relative)                                        \
+  const std::string var = ::vilslam::test::shared_data(relative);                         \
+  if (var.empty()) GTEST_SKIP() << "shared data absent: " << VILSLAM_SHARED_DATA << "/" << relative
+
+// A fresh empty folder under the build tree's temp dir, unique per test.
+inline std::filesystem::path temp_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::filesystem::path dir = std::filesystem::temp_directory_path() / "vilslam_tests" /
+                              (std::string(info->test_suite_name()) + "." + info->name());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+struct CliResult {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+// Runs the built `vilslam` CLI with the given argument string.
+inline CliResult run_cli(const std::string& args) {
+  static int counter = 0;
+  const std::filesystem::path out = std::filesystem::temp_directory_path() / "vilslam_tests" /
+                                    ("cli_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + ".txt");
+  std::filesystem::create_directories(out.parent_path());
+  const std::string cmd = std::string(VILSLAM_CLI) + " " + args + " > " + out.string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  CliResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::FILE* f = std::fopen(out.string().c_str(), "r");
+  if (f) {
+    char buf[4096];
+    size_t n;
+    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) r.output.append(buf, n);
+    std::fclose(f);
+  }
+  return r;
+}
+
+}  // namespace vilslam::test
