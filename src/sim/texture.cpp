@@ -128,33 +128,40 @@ double clutter(const Sample& q, std::uint64_t seed) {
   return p;
 }
 
-// Posters on a faintly textured wall, one per cell at most (kPosterCellM): border, large title, lines of text or a picture.
+// Printed matter filling the whole surface (posters and signs are decals of this material): a
+// layout of blocks (kPosterCells per period) with light or dark paper, each showing a title and text,
+// a picture with a caption, or bold bars and a disc.
 double poster(const Sample& q, std::uint64_t seed) {
-  const double wall = 0.03 * plain(q, seed);
-  const Cell c = cell_of(q.s, 4, 3);
+  const Cell c = cell_of(q.s, 4, 6);
   const std::uint64_t h = hash64(seed + 20, c.i, c.j);
-  if (hash_unit(h, 1) > 0.65) return wall;
-  const Rect r = random_rect(c, h, 0.5, 1.0, 0.05);
-  const double d = rect_distance(c.local_m, r.lo, r.hi);
-  const double inside = coverage(d, q.texel_m);
-  if (inside <= 0) return wall;
-  const double bg = hash_unit(h, 2) < 0.5 ? 0.85 : -0.75;
-  const double ink_tone = -bg;
-  const Eigen::Vector2d local = c.local_m - r.lo, size = r.hi - r.lo;
-  double v = bg;
-  if (-d < 0.015) v = ink_tone * 0.8;  // border
-  const double title_h = 0.04 + 0.03 * hash_unit(h, 3);
-  const double margin = 0.04;
-  if (local.y() < margin + 1.2 * title_h) {
-    v -= (bg - ink_tone) * text_ink(local - Eigen::Vector2d(margin, margin), title_h, size.x() - 2 * margin, h + 1);
-  } else if (hash_unit(h, 4) < 0.4 && local.y() < 0.6 * size.y() && local.x() > margin &&
-             local.x() < size.x() - margin) {
-    v = 0.9 * fbm(q.s.x(), q.s.y(), 32, 4, h + 2);  // a picture
-  } else {
-    const Eigen::Vector2d body = local - Eigen::Vector2d(margin, margin + 1.6 * title_h);
-    v -= (bg - ink_tone) * text_ink(body, 0.012 + 0.012 * hash_unit(h, 5), size.x() - 2 * margin, h + 3);
+  const double paper = hash_unit(h, 1) < 0.5 ? 0.8 : -0.7;
+  const double ink = -0.9 * paper / std::abs(paper);
+  const double margin = 0.03;
+  const Eigen::Vector2d& p = c.local_m;
+  const double layout = hash_unit(h, 2);
+  if (layout < 0.45) {
+    const double title_h = 0.04 + 0.04 * hash_unit(h, 3);
+    const double width = c.size_m.x() - 2 * margin;
+    if (p.y() < margin + 1.3 * title_h)
+      return paper + (ink - paper) * text_ink(p - Eigen::Vector2d(margin, margin), title_h, width, h + 1);
+    const Eigen::Vector2d body = p - Eigen::Vector2d(margin, margin + 1.6 * title_h);
+    return paper + (ink - paper) * text_ink(body, 0.012 + 0.012 * hash_unit(h, 4), width, h + 2);
   }
-  return wall + inside * (v - wall);
+  if (layout < 0.8) {
+    const Rect picture = random_rect(c, h, 0.6, 0.85, margin);
+    const double d = rect_distance(p, picture.lo, picture.hi);
+    if (d > 0) {
+      const Eigen::Vector2d caption(picture.lo.x(), picture.hi.y() + 0.015);
+      return paper + (ink - paper) * text_ink(p - caption, 0.015, picture.hi.x() - picture.lo.x(), h + 3);
+    }
+    return 0.95 * fbm(q.s.x(), q.s.y(), 32, 4, h + 4);
+  }
+  // Bold bars across the block and a disc (logos, signs).
+  const int bar = static_cast<int>(p.y() / c.size_m.y() * 5);
+  const double v = hash_unit(h, 10 + bar) < 0.5 ? paper : ink;
+  const Eigen::Vector2d centre(c.size_m.x() * (0.25 + 0.5 * hash_unit(h, 5)), 0.5 * c.size_m.y());
+  const double disc = coverage((p - centre).norm() - 0.12 - 0.1 * hash_unit(h, 6), q.texel_m);
+  return v + disc * ((v == paper ? ink : paper) - v);
 }
 
 // Foliage: three layers of leaves of random tone over dark gaps, front layers on top.
@@ -212,7 +219,7 @@ ShuffleCell shuffle_cell(Material::Kind kind) {
     case Material::Kind::kPlain: return {1, 1, 0.0};
     case Material::Kind::kConcrete: return {4, 4, 0.04};   // two formwork panels per cell
     case Material::Kind::kClutter: return {4, 3, 0.04};    // 2 x 2 shelf cells
-    case Material::Kind::kPoster: return {4, 3, 0.06};     // one poster cell
+    case Material::Kind::kPoster: return {4, 6, 0.01};     // one layout block
     case Material::Kind::kFoliage: return {4, 4, 0.12};
     case Material::Kind::kGround: return {4, 4, 0.3};
   }
