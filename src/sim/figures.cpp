@@ -26,15 +26,20 @@ cv::Point2d TopView::pixel(double x, double y) const {
   return {(x - extent_.min().x()) / metres_per_px_, (extent_.max().y() - y) / metres_per_px_};
 }
 
-void TopView::draw_points(const std::vector<Eigen::Vector3f>& points, double z_min, double z_max, double z_clip) {
+void TopView::draw_points(const std::vector<Eigen::Vector3f>& points, double z_min, double z_max, double z_clip,
+                          int dot_px) {
   cv::Mat top_z(image_.size(), CV_32F, cv::Scalar(-std::numeric_limits<float>::infinity()));
   for (const Eigen::Vector3f& p : points) {
     if (p.z() > z_clip) continue;
     const cv::Point2d px = pixel(p.x(), p.y());
-    const int c = static_cast<int>(std::floor(px.x)), r = static_cast<int>(std::floor(px.y));
-    if (c < 0 || r < 0 || c >= image_.cols || r >= image_.rows) continue;
-    float& z = top_z.at<float>(r, c);
-    z = std::max(z, p.z());
+    const int c0 = static_cast<int>(std::floor(px.x)) - (dot_px - 1) / 2;
+    const int r0 = static_cast<int>(std::floor(px.y)) - (dot_px - 1) / 2;
+    for (int r = std::max(r0, 0); r < std::min(r0 + dot_px, image_.rows); ++r) {
+      for (int c = std::max(c0, 0); c < std::min(c0 + dot_px, image_.cols); ++c) {
+        float& z = top_z.at<float>(r, c);
+        z = std::max(z, p.z());
+      }
+    }
   }
   cv::Mat level(image_.size(), CV_8U);
   const double span = std::max(z_max - z_min, 1e-6);

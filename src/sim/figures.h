@@ -18,8 +18,10 @@ class TopView {
   TopView(const Eigen::AlignedBox2d& extent_xy, int max_side_px);
 
   // Each pixel shows its highest point with z <= z_clip (a cut through the ceiling), coloured by height
-  // from z_min (blue) to z_max (red). May be called more than once; later calls draw on top.
-  void draw_points(const std::vector<Eigen::Vector3f>& points, double z_min, double z_max, double z_clip);
+  // from z_min (blue) to z_max (red); a point covers dot_px x dot_px pixels. May be called more than
+  // once; later calls draw on top.
+  void draw_points(const std::vector<Eigen::Vector3f>& points, double z_min, double z_max, double z_clip,
+                   int dot_px = 1);
   // A polyline through the points' x-y (BGR colour), with a dot at the first point.
   void draw_path(const std::vector<Vec3>& points, const cv::Scalar& bgr, int thickness_px);
   // A scale bar of a round length in the lower left corner.

@@ -14,7 +14,10 @@ std::uint64_t splitmix(std::uint64_t z) {
   return z ^ (z >> 31);
 }
 
-int wrap(std::int64_t i, int n) { return static_cast<int>(((i % n) + n) % n); }
+int wrap(std::int64_t i, int n) {
+  if ((n & (n - 1)) == 0) return static_cast<int>(i & (n - 1));
+  return static_cast<int>(((i % n) + n) % n);
+}
 
 // Quintic fade 6t^5 - 15t^4 + 10t^3 (Perlin, "Improving Noise", 2002).
 double fade(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
@@ -48,11 +51,11 @@ LatticeCell lattice_cell(double x, double y, int cells) {
 }  // namespace
 
 std::uint64_t hash64(std::uint64_t seed, std::int64_t a, std::int64_t b, std::int64_t c) {
-  // Inputs spread by distinct odd multipliers, then two rounds of the splitmix64 finalizer.
+  // Inputs spread by distinct odd multipliers, then the splitmix64 finalizer.
   const std::uint64_t h = seed * 0xD6E8FEB86659FD93ull ^ static_cast<std::uint64_t>(a) * 0x9E3779B97F4A7C15ull ^
                           static_cast<std::uint64_t>(b) * 0xC2B2AE3D27D4EB4Full ^
                           static_cast<std::uint64_t>(c) * 0x165667B19E3779F9ull;
-  return splitmix(splitmix(h));
+  return splitmix(h);
 }
 
 double hash_unit(std::uint64_t seed, std::int64_t a, std::int64_t b, std::int64_t c) {
@@ -104,7 +107,7 @@ DiscHit nearest_disc(double x, double y, int cells, double density, double r_min
       if (unit16(h, 0) >= density) continue;
       const double cx = ix + di + unit16(h, 1), cy = iy + dj + unit16(h, 2);
       const double radius = (r_min + (r_max - r_min) * unit16(h, 3)) * cells;
-      const double d = (std::hypot(X - cx, Y - cy) - radius) / cells;
+      const double d = (std::sqrt((X - cx) * (X - cx) + (Y - cy) * (Y - cy)) - radius) / cells;
       if (d < best.signed_distance) best = {d, h};
     }
   }

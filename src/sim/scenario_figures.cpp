@@ -44,7 +44,7 @@ cv::Mat scan_top_view(const World& world, const Vec3& origin_W, const Vec3& head
     radius = std::max(radius, 1.05 * *q);
   }
   TopView view(Eigen::AlignedBox2d(Eigen::Vector2d(-radius, -radius), Eigen::Vector2d(radius, radius)), kFigureSidePx);
-  view.draw_points(points, -2.0, 3.0, 1e9);
+  view.draw_points(points, -2.0, 3.0, 1e9, 2);
   view.draw_path({Vec3::Zero(), Vec3(0.1 * radius, 0, 0)}, cv::Scalar(0, 0, 0), 2);
   view.draw_scale_bar();
   return view.image().clone();
@@ -52,16 +52,23 @@ cv::Mat scan_top_view(const World& world, const Vec3& origin_W, const Vec3& head
 
 cv::Mat map_top_view(const World& world) {
   const Eigen::AlignedBox3d b = world.bounds();
-  const Eigen::AlignedBox2d extent(b.min().head<2>() - Eigen::Vector2d::Constant(1.0),
-                                   b.max().head<2>() + Eigen::Vector2d::Constant(1.0));
+  // At least a quarter as high as wide, so that long thin worlds (tunnels) stay visible.
+  const Eigen::Vector2d half_size =
+      (0.5 * b.sizes().head<2>()).cwiseMax(0.125 * b.sizes().head<2>().maxCoeff()) + Eigen::Vector2d::Constant(1.0);
+  const Eigen::Vector2d centre = b.center().head<2>();
+  const Eigen::AlignedBox2d extent(centre - half_size, centre + half_size);
   const double spacing_m = std::max(0.05, 0.7 * extent.sizes().maxCoeff() / kFigureSidePx);
   const PointCloud cloud = world.sample_surfaces(spacing_m);
   double route_z = 0;
   for (const Vec3& p : world.route_W()) route_z += p.z() / static_cast<double>(world.route_W().size());
-  // Cut 1 m above the route so ceilings and roofs do not hide the floor plan.
-  const double z_clip = route_z + 1.0;
+  // Cut 1 m above the route so ceilings and roofs do not hide the floor plan; leave out the floor.
+  const double z_clip = route_z + 1.0, z_floor = b.min().z() + 0.05;
+  std::vector<Eigen::Vector3f> above_floor;
+  for (const Eigen::Vector3f& p : cloud.points) {
+    if (p.z() > z_floor) above_floor.push_back(p);
+  }
   TopView view(extent, kFigureSidePx);
-  view.draw_points(cloud.points, b.min().z(), z_clip, z_clip);
+  view.draw_points(above_floor, z_floor, z_clip, z_clip, 1);
   view.draw_path(world.route_W(), cv::Scalar(0, 0, 0), 2);
   view.draw_scale_bar();
   return view.image().clone();
@@ -80,8 +87,8 @@ CameraIntrinsics figure_camera() {
   return c;
 }
 
-SE3 route_camera_pose(const std::vector<Vec3>& route_W, std::size_t i) {
-  return camera_pose_looking(route_W[i], route_heading(route_W, i, 0.5));
+SE3 route_camera_pose(const std::vector<Vec3>& route_W, std::size_t i, double lookahead_m) {
+  return camera_pose_looking(route_W[i], route_heading(route_W, i, lookahead_m));
 }
 
 ScenarioFigures make_scenario_figures(const World& world, std::uint64_t seed) {
@@ -91,7 +98,7 @@ ScenarioFigures make_scenario_figures(const World& world, std::uint64_t seed) {
   options.noise_seed = seed;
   ScenarioFigures f;
   f.left = render_image(world, figure_camera(), [&](TimeNs) { return T_W_C; }, 0, options);
-  f.scan_top = scan_top_view(world, route.front(), route_heading(route, 0, 0.5), seed);
+  f.scan_top = scan_top_view(world, route.front(), route_heading(route, 0, 3.0), seed);
   f.map_top = map_top_view(world);
   return f;
 }

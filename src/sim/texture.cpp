@@ -167,7 +167,7 @@ double poster(const Sample& q, std::uint64_t seed) {
 // Foliage: three layers of leaves of random tone over dark gaps, front layers on top.
 double foliage(const Sample& q, std::uint64_t seed) {
   double p = -1.0 + 0.3 * fbm(q.s.x(), q.s.y(), 32, 2, seed);
-  const int cells[3] = {16, 24, 40};
+  const int cells[3] = {16, 32, 64};
   for (int layer = 0; layer < 3; ++layer) {
     const DiscHit leaf = nearest_disc(q.s.x(), q.s.y(), cells[layer], 0.85, 0.3 / cells[layer],
                                       0.55 / cells[layer], seed + 30 + layer);
