@@ -54,12 +54,27 @@ void trace(const World& world, const MaterialTextures& textures, const RayTable&
   });
 }
 
-// Standard normal deviate of pixel i from the seed (Box-Muller on two hashed uniforms).
-double pixel_noise(std::uint64_t seed, std::int64_t i) {
-  const std::uint64_t h = hash64(seed, i);
-  const double u1 = (static_cast<double>(h >> 32) + 0.5) / 4294967296.0;
-  const double u2 = static_cast<double>(h & 0xFFFFFFFFu) / 4294967296.0;
-  return std::sqrt(-2 * std::log(u1)) * std::cos(2 * M_PI * u2);
+// Standard normal quantiles at (k + 0.5) / 2^16 (inverse CDF by Newton on erfc), for table sampling.
+const std::vector<float>& normal_quantiles() {
+  static const std::vector<float> table = [] {
+    std::vector<float> q(1 << 16);
+    for (std::size_t k = 0; k < q.size(); ++k) {
+      const double p = (k + 0.5) / q.size();
+      double x = 0;
+      for (int it = 0; it < 60; ++it) {
+        const double cdf = 0.5 * std::erfc(-x / std::sqrt(2.0));
+        x -= (cdf - p) / (std::exp(-0.5 * x * x) / std::sqrt(2 * M_PI));
+      }
+      q[k] = static_cast<float>(x);
+    }
+    return q;
+  }();
+  return table;
+}
+
+// Standard normal deviate of pixel i: a counter-based hash of (seed, i) picks a quantile.
+float pixel_noise(const std::vector<float>& quantiles, std::uint64_t seed, std::int64_t i) {
+  return quantiles[hash64(seed, i) >> 48];
 }
 
 }  // namespace
@@ -95,12 +110,13 @@ cv::Mat render_image(const World& world, const CameraIntrinsics& intrinsics,
 
   cv::Mat image(radiance.size(), CV_8U);
   const double scale = 255.0 * options.exposure_gain;
+  const std::vector<float>& quantiles = normal_quantiles();
   tbb::parallel_for(0, image.rows, [&](int r) {
     const float* in = radiance.ptr<float>(r);
     std::uint8_t* out = image.ptr<std::uint8_t>(r);
     for (int c = 0; c < image.cols; ++c) {
       const std::int64_t i = static_cast<std::int64_t>(r) * image.cols + c;
-      const double v = scale * in[c] + options.noise_sigma_grey * pixel_noise(options.noise_seed, i);
+      const double v = scale * in[c] + options.noise_sigma_grey * pixel_noise(quantiles, options.noise_seed, i);
       out[c] = static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L));
     }
   });

@@ -37,9 +37,11 @@ std::pair<double, int> own_weight(double f, double cell_m, double blend_m) {
 MaterialTextures::MaterialTextures(const std::vector<Material>& materials, const TextureOptions& options) {
   entries_.reserve(materials.size());
   for (const Material& m : materials) {
+    // Plain paint has no detail finer than a few centimetres: a quarter of the texels suffice.
+    const int detail_size = m.kind == Material::Kind::kPlain ? options.detail_size / 4 : options.detail_size;
     entries_.push_back(Entry{
         m,
-        MipTile(options.detail_size, kTexturePeriodM,
+        MipTile(detail_size, kTexturePeriodM,
                 [&m](double u, double v, double texel_m) { return texture_albedo(m, {u, v}, texel_m); }),
         MipTile(options.macro_size, kMacroPeriodM,
                 [&m](double u, double v, double) { return texture_macro_gain(m, {u, v}); })});
@@ -69,7 +71,7 @@ float MaterialTextures::shuffled_detail(const Entry& e, const Eigen::Vector2d& u
 
 float MaterialTextures::albedo(int index, const Eigen::Vector2d& uv_m, double footprint_m) const {
   const Entry& e = entries_[index];
-  const float gain = e.macro.sample(uv_m.x(), uv_m.y(), footprint_m);
+  const float gain = e.macro.sample_nearest_level(uv_m.x(), uv_m.y(), footprint_m);
   return std::min(1.0f, gain * shuffled_detail(e, uv_m, footprint_m));
 }
 

@@ -13,7 +13,7 @@
 namespace vilslam::sim {
 
 struct TextureOptions {
-  int detail_size = 1024;  // texels per side of the detail tile (4 mm texels)
+  int detail_size = 1024;  // texels per side of the detail tile (4 mm texels; a quarter for plain paint)
   int macro_size = 256;
 };
 

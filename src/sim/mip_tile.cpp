@@ -47,6 +47,11 @@ float MipTile::sample_level(double u_m, double v_m, int level) const {
   return top + ay * (bottom - top);
 }
 
+float MipTile::sample_nearest_level(double u_m, double v_m, double footprint_m) const {
+  const double level = std::log2(std::max(footprint_m / texel_m_, 1.0));
+  return sample_level(u_m, v_m, std::min(num_levels() - 1, static_cast<int>(std::lround(level))));
+}
+
 float MipTile::sample(double u_m, double v_m, double footprint_m) const {
   const double level = std::log2(std::max(footprint_m / texel_m_, 1.0));
   const int top = num_levels() - 1;

@@ -14,6 +14,8 @@ class MipTile {
   // Trilinear lookup at surface coordinates (metres, wrapping) for a footprint of footprint_m per
   // pixel: the level whose texel matches the footprint (level 0 when the footprint is smaller).
   float sample(double u_m, double v_m, double footprint_m) const;
+  // Bilinear lookup in the level nearest to the footprint (for smooth content; half the cost).
+  float sample_nearest_level(double u_m, double v_m, double footprint_m) const;
   // Bilinear lookup in one level (for tests and inspection).
   float sample_level(double u_m, double v_m, int level) const;
   int num_levels() const { return static_cast<int>(levels_.size()); }

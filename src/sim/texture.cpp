@@ -71,7 +71,7 @@ double text_ink(const Eigen::Vector2d& p_m, double glyph_m, double width_m, std:
 }
 
 double plain(const Sample& q, std::uint64_t seed) {
-  return 0.75 * fbm(q.s.x(), q.s.y(), 4, 3, seed) + 0.25 * fbm(q.s.x(), q.s.y(), 64, 2, seed + 1);
+  return 0.75 * fbm(q.s.x(), q.s.y(), 4, 3, seed) + 0.25 * gradient_noise(q.s.x(), q.s.y(), 64, seed + 1);
 }
 
 // Formwork concrete: panels of slightly different tone, dark seams, tie holes, pits and speckle.
