@@ -18,6 +18,10 @@ namespace {
 const Vec3 kLightDir_W = Vec3(0.4, 0.25, 0.88).normalized();
 constexpr double kAmbient = 0.5;
 constexpr double kSkyRadiance = 0.85;
+// No paint reflects 95 % of the light: surfaces that bright are light fixtures (lamps, ceiling lights)
+// and emit, saturating the pixel at unit gain as real lights do.
+constexpr float kEmitterMinGrey = 0.95f;
+constexpr float kEmitterRadiance = 1.3f;
 // Lens blur (Gaussian PSF sigma in pixels): edges spread over about a pixel as through real optics.
 constexpr double kPsfSigmaPx = 0.5;
 // Surfaces seen more obliquely than this are filtered as if at this incidence.
@@ -31,6 +35,8 @@ struct PoseSample {
 // Radiance (0..1) of every pixel seen from one pose; z_C of the hit when depth is wanted.
 void trace(const World& world, const MaterialTextures& textures, const RayTable& rays, const PoseSample& pose,
            double max_range_m, float weight, cv::Mat& radiance, cv::Mat* depth) {
+  std::vector<bool> emitter;
+  for (const Material& m : world.materials()) emitter.push_back(m.base_grey >= kEmitterMinGrey);
   tbb::parallel_for(0, rays.height, [&](int r) {
     float* out = radiance.ptr<float>(r);
     float* z_out = depth ? depth->ptr<float>(r) : nullptr;
@@ -44,12 +50,16 @@ void trace(const World& world, const MaterialTextures& textures, const RayTable&
         if (z_out) z_out[c] = 0;
         continue;
       }
+      if (z_out) z_out[c] = static_cast<float>(hit->range_m * d_C.z());
+      if (emitter[hit->material]) {
+        out[c] += weight * kEmitterRadiance;
+        continue;
+      }
       const double cos_incidence = std::max(kMinCosIncidence, std::abs(hit->normal_W.dot(d_W)));
       const double footprint_m = hit->range_m * rays.pixel_angle_rad[i] / cos_incidence;
       const float albedo = textures.albedo(hit->material, hit->uv_m, footprint_m);
       const double shade = kAmbient + (1 - kAmbient) * (0.5 + 0.5 * hit->normal_W.dot(kLightDir_W));
       out[c] += weight * static_cast<float>(albedo * shade);
-      if (z_out) z_out[c] = static_cast<float>(hit->range_m * d_C.z());
     }
   });
 }

@@ -46,8 +46,8 @@ CornerCounts corners_along_route(Scenario scenario, int frames) {
 }
 
 TEST(CameraHardCase, HallwayHasFarFewerCornersThanHighbay) {
-  const CornerCounts highbay = corners_along_route(Scenario::kHighbay, 10);
-  const CornerCounts hallway = corners_along_route(Scenario::kHallway, 10);
+  const CornerCounts highbay = corners_along_route(Scenario::kHighbay, 12);
+  const CornerCounts hallway = corners_along_route(Scenario::kHallway, 12);
   std::cout << "mean Shi-Tomasi corners per frame (repeatable): highbay " << highbay.detected << " ("
             << highbay.repeatable << "), hallway " << hallway.detected << " (" << hallway.repeatable << ")\n";
   EXPECT_LT(hallway.detected, 0.5 * highbay.detected);
