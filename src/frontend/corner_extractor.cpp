@@ -47,6 +47,11 @@ std::vector<cv::Point2f> detect_corners(const cv::Mat& image, const FrontendConf
   std::vector<cv::Point2f> corners;
   cv::goodFeaturesToTrack(image, corners, config.max_corners, config.corner_quality, config.corner_min_distance_px,
                           cv::noArray(), config.corner_block_size);
+  if (!corners.empty() && config.corner_subpix_half_window_px > 0) {
+    const cv::Size half_window(config.corner_subpix_half_window_px, config.corner_subpix_half_window_px);
+    cv::cornerSubPix(image, corners, half_window, cv::Size(-1, -1),
+                     cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 20, 0.01));
+  }
   return corners;
 }
 

@@ -7,7 +7,7 @@
 
 namespace vilslam {
 
-// Shi-Tomasi corners (cv::goodFeaturesToTrack), strongest first.
+// Shi-Tomasi corners (cv::goodFeaturesToTrack), strongest first, refined to sub-pixel (cv::cornerSubPix).
 std::vector<cv::Point2f> detect_corners(const cv::Mat& image, const FrontendConfig& config);
 
 // The corners farther than min_distance_px from every existing feature, in their input order.

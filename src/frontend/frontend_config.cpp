@@ -22,6 +22,7 @@ std::map<std::string, std::function<void(const YAML::Node&)>> setters(FrontendCo
       {"corner_quality", setter(&c->corner_quality)},
       {"corner_min_distance_px", setter(&c->corner_min_distance_px)},
       {"corner_block_size", setter(&c->corner_block_size)},
+      {"corner_subpix_half_window_px", setter(&c->corner_subpix_half_window_px)},
       {"elimination_distance_px", setter(&c->elimination_distance_px)},
       {"klt_window_px", setter(&c->klt_window_px)},
       {"klt_pyramid_levels", setter(&c->klt_pyramid_levels)},
@@ -55,6 +56,7 @@ void validate_frontend_config(const FrontendConfig& c, const std::string& source
   require(c.corner_quality > 0 && c.corner_quality < 1, "corner_quality must be in (0, 1)");
   require(c.corner_min_distance_px >= 0, "corner_min_distance_px must be >= 0");
   require(c.corner_block_size >= 3 && c.corner_block_size % 2 == 1, "corner_block_size must be odd and >= 3");
+  require(c.corner_subpix_half_window_px >= 0, "corner_subpix_half_window_px must be >= 0");
   require(c.elimination_distance_px >= 0, "elimination_distance_px must be >= 0");
   require(c.klt_window_px >= 5 && c.klt_window_px % 2 == 1, "klt_window_px must be odd and >= 5");
   require(c.klt_pyramid_levels >= 0 && c.klt_pyramid_levels <= 8, "klt_pyramid_levels must be in [0, 8]");

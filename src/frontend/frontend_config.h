@@ -13,6 +13,7 @@ struct FrontendConfig {
   double corner_quality = 0.005;
   double corner_min_distance_px = 10;
   int corner_block_size = 3;
+  int corner_subpix_half_window_px = 3;  // cv::cornerSubPix refinement; 0 keeps integer corners
   // New corners closer than this to an existing (tracked) feature of the same image are eliminated.
   double elimination_distance_px = 10;
   // Pyramidal KLT (cv::calcOpticalFlowPyrLK).
