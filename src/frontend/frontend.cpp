@@ -55,7 +55,7 @@ FrontendOutput Frontend::process(const StereoFrame& frame) {
   output.t_ns = frame.t_ns;
   output.tracked = static_cast<int>(tracks.size());
   if (output.tracked < config_.min_tracked_matches) {
-    const std::vector<Track> fresh = extract_new(frame.left, frame.right, tracks);
+    const std::vector<Track> fresh = extract_new(frame, left, right, tracks);
     output.extracted = static_cast<int>(fresh.size());
     tracks.insert(tracks.end(), fresh.begin(), fresh.end());
   }
@@ -121,8 +121,11 @@ void Frontend::reject_temporal_outliers(std::vector<Track>* tracks, const std::v
   *tracks = std::move(kept);
 }
 
-std::vector<Frontend::Track> Frontend::extract_new(const cv::Mat& left, const cv::Mat& right,
+std::vector<Frontend::Track> Frontend::extract_new(const StereoFrame& frame, const ImagePyramid& left_pyramid,
+                                                   const ImagePyramid& right_pyramid,
                                                    const std::vector<Track>& existing) {
+  const cv::Mat& left = frame.left;
+  const cv::Mat& right = frame.right;
   std::vector<cv::Point2f> existing_left, existing_right;
   for (const Track& t : existing) {
     existing_left.push_back(to_cv(t.match.left_px));
@@ -136,12 +139,16 @@ std::vector<Frontend::Track> Frontend::extract_new(const cv::Mat& left, const cv
   stats_.corners_right = static_cast<int>(corners_right.size());
   const DescribedFeatures features_left = describe(left, &corners_left, rig_.cam0, config_);
   const DescribedFeatures features_right = describe(right, &corners_right, rig_.cam1, config_);
-  std::vector<Track> fresh;
+  std::vector<Track> matched;
   for (const IndexPair& pair :
        match_stereo(features_left, features_right, rig_.T_C1_C0, rig_.cam1.focal_px(), config_)) {
     Track t;
     t.match.left_px = to_eigen(corners_left[pair.left]);
     t.match.right_px = to_eigen(corners_right[pair.right]);
+    matched.push_back(t);
+  }
+  std::vector<Track> fresh;
+  for (Track& t : refine_right(left_pyramid, right_pyramid, std::move(matched))) {
     if (!stereo_check(&t)) {
       ++stats_.stereo_rejected;
       continue;
@@ -150,6 +157,31 @@ std::vector<Frontend::Track> Frontend::extract_new(const cv::Mat& left, const cv
     fresh.push_back(t);
   }
   return fresh;
+}
+
+std::vector<Frontend::Track> Frontend::refine_right(const ImagePyramid& left, const ImagePyramid& right,
+                                                    std::vector<Track> fresh) {
+  if (config_.max_stereo_refinement_px <= 0) return fresh;
+  std::vector<cv::Point2f> left_px, right_px;
+  for (const Track& t : fresh) {
+    left_px.push_back(to_cv(t.match.left_px));
+    right_px.push_back(to_cv(t.match.right_px));
+  }
+  // Independent corners of the two images may sit a pixel or two apart on the same structure; KLT from
+  // the left corner, started at the matched right corner, finds the right pixel of the same point.
+  std::vector<bool> ok;
+  refine_klt(left, right, left_px, config_, &right_px, &ok);
+  std::vector<Track> refined;
+  for (std::size_t i = 0; i < fresh.size(); ++i) {
+    const Eigen::Vector2d moved_to = to_eigen(right_px[i]);
+    if (!ok[i] || (moved_to - fresh[i].match.right_px).norm() > config_.max_stereo_refinement_px) {
+      ++stats_.refine_rejected;
+      continue;
+    }
+    fresh[i].match.right_px = moved_to;
+    refined.push_back(fresh[i]);
+  }
+  return refined;
 }
 
 bool Frontend::stereo_check(Track* track) const {

@@ -18,6 +18,7 @@ namespace vilslam {
 struct FrontendStats {
   int klt_lost = 0;           // previous matches not tracked in both images
   int stereo_rejected = 0;    // tracked or new matches over the stereo reprojection threshold
+  int refine_rejected = 0;    // new matches whose left -> right KLT refinement failed or moved too far
   int temporal_rejected = 0;  // tracked matches inconsistent with the frame-to-frame motion
   bool motion_valid = false;  // the PnP motion estimate was available for the temporal check
   int corners_left = 0;       // Shi-Tomasi corners surviving elimination (0 when no extraction ran)
@@ -43,7 +44,10 @@ class Frontend {
 
   std::vector<Track> track_previous(const ImagePyramid& left, const ImagePyramid& right);
   void reject_temporal_outliers(std::vector<Track>* tracks, const std::vector<Vec3>& p_C0prev);
-  std::vector<Track> extract_new(const cv::Mat& left, const cv::Mat& right, const std::vector<Track>& existing);
+  std::vector<Track> extract_new(const StereoFrame& frame, const ImagePyramid& left, const ImagePyramid& right,
+                                 const std::vector<Track>& existing);
+  // Moves each new match's right pixel onto its left corner's appearance (KLT left -> right).
+  std::vector<Track> refine_right(const ImagePyramid& left, const ImagePyramid& right, std::vector<Track> fresh);
   // Fills the normalized coordinates and the 3D point; false when the stereo check rejects the match.
   bool stereo_check(Track* track) const;
 

@@ -36,6 +36,7 @@ std::map<std::string, std::function<void(const YAML::Node&)>> setters(FrontendCo
       {"max_epipolar_distance_px", setter(&c->max_epipolar_distance_px)},
       {"min_depth_m", setter(&c->min_depth_m)},
       {"max_depth_m", setter(&c->max_depth_m)},
+      {"max_stereo_refinement_px", setter(&c->max_stereo_refinement_px)},
       {"max_stereo_reprojection_px", setter(&c->max_stereo_reprojection_px)},
       {"max_temporal_reprojection_px", setter(&c->max_temporal_reprojection_px)},
       {"pnp_min_points", setter(&c->pnp_min_points)},
@@ -67,6 +68,7 @@ void validate_frontend_config(const FrontendConfig& c, const std::string& source
   require(c.ratio_test > 0 && c.ratio_test <= 1, "ratio_test must be in (0, 1]");
   require(c.max_epipolar_distance_px > 0, "max_epipolar_distance_px must be > 0");
   require(c.min_depth_m > 0 && c.max_depth_m > c.min_depth_m, "need 0 < min_depth_m < max_depth_m");
+  require(c.max_stereo_refinement_px >= 0, "max_stereo_refinement_px must be >= 0");
   require(c.max_stereo_reprojection_px > 0 && c.max_temporal_reprojection_px > 0,
           "reprojection thresholds must be > 0");
   require(c.pnp_min_points >= 4, "pnp_min_points must be >= 4");

@@ -9,13 +9,13 @@ struct FrontendConfig {
   // Extraction runs when fewer tracked stereo matches than this survive (and on the first pair).
   int min_tracked_matches = 150;
   // Shi-Tomasi (cv::goodFeaturesToTrack) per image.
-  int max_corners = 400;
-  double corner_quality = 0.005;
-  double corner_min_distance_px = 10;
+  int max_corners = 600;
+  double corner_quality = 0.003;
+  double corner_min_distance_px = 8;
   int corner_block_size = 3;
   int corner_subpix_half_window_px = 3;  // cv::cornerSubPix refinement; 0 keeps integer corners
   // New corners closer than this to an existing (tracked) feature of the same image are eliminated.
-  double elimination_distance_px = 10;
+  double elimination_distance_px = 8;
   // Pyramidal KLT (cv::calcOpticalFlowPyrLK).
   int klt_window_px = 21;
   int klt_pyramid_levels = 3;
@@ -27,11 +27,14 @@ struct FrontendConfig {
   int orb_patch_size = 31;
   // Brute-force stereo matching.
   int max_descriptor_distance = 60;     // Hamming, out of 256 bits
-  double ratio_test = 0.85;             // best / second-best distance
+  double ratio_test = 0.75;             // best / second-best distance
   bool cross_check = true;              // the right corner's best left match must be the same corner
   double max_epipolar_distance_px = 2.0;
   double min_depth_m = 0.3;
   double max_depth_m = 40.0;
+  // KLT (left -> right, started at the matched corner) refines new matches; a match whose refinement
+  // fails or moves farther than this is dropped. 0 disables the refinement.
+  double max_stereo_refinement_px = 3.0;
   // Outlier rejection on average reprojection errors (left and right image).
   double max_stereo_reprojection_px = 1.5;
   double max_temporal_reprojection_px = 3.0;

@@ -18,4 +18,9 @@ ImagePyramid build_klt_pyramid(const cv::Mat& image, const FrontendConfig& confi
 void track_klt(const ImagePyramid& prev, const ImagePyramid& cur, const std::vector<cv::Point2f>& prev_px,
                const FrontendConfig& config, std::vector<cv::Point2f>* cur_px, std::vector<bool>* tracked);
 
+// Like track_klt, but starts from the positions in *cur_px (same size as prev_px), which must already be
+// within a few pixels: only the two finest pyramid levels are used.
+void refine_klt(const ImagePyramid& prev, const ImagePyramid& cur, const std::vector<cv::Point2f>& prev_px,
+                const FrontendConfig& config, std::vector<cv::Point2f>* cur_px, std::vector<bool>* tracked);
+
 }  // namespace vilslam
