@@ -27,8 +27,6 @@ TEST(EvoReference, Kitti00OrbApeSe3AndRpe10m) {
   EXPECT_NEAR(r.ape.trans.max, 3.58795, kPrintedPrecision);
   EXPECT_NEAR(r.rpe.trans.rmse, 0.22626, kPrintedPrecision);
   EXPECT_NEAR(r.rpe.trans.mean, 0.16902, kPrintedPrecision);
-  std::printf("ape %.7f %.7f %.7f %.7f %.7f %.7f\n", r.ape.trans.rmse, r.ape.trans.mean, r.ape.trans.median, r.ape.trans.std, r.ape.trans.min, r.ape.trans.max);
-  std::printf("rpe %.7f %.7f %zu kitti %f %f fde %f %f\n", r.rpe.trans.rmse, r.rpe.trans.mean, r.rpe.trans.count, r.kitti.t_err_percent, r.kitti.r_err_deg_per_m, r.fde.percent, r.fde_start_aligned.percent);
 }
 
 }  // namespace
