@@ -1,15 +1,15 @@
-// Trajectory format names, format detection and atomic writing.
+// Trajectory format names, format detection and writing (atomically, through write_file_atomic).
 #include "io/trajectory_io.h"
 
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
-#include <unistd.h>
 
 #include "common/error.h"
+#include "common/json_writer.h"
 
 namespace vilslam {
 namespace {
@@ -97,23 +97,12 @@ TrajectoryFormat detect_trajectory_format(const std::string& path) {
 }
 
 void write_trajectory(const std::string& path, const Trajectory& traj, TrajectoryFormat format) {
-  const std::string tmp = path + ".tmp" + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp);
-    if (!out) throw InputError(path, "cannot create file");
-    write_rows(out, traj, format);
-    out.flush();
-    if (!out) {
-      out.close();
-      std::remove(tmp.c_str());
-      throw InputError(path, "write failed");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    throw InputError(path, "cannot rename temporary file: " + ec.message());
+  std::ostringstream out;
+  write_rows(out, traj, format);
+  try {
+    write_file_atomic(path, out.str());
+  } catch (const std::runtime_error& e) {
+    throw InputError(path, e.what());
   }
 }
 
