@@ -20,8 +20,8 @@ Association associate(const Trajectory& est, const Trajectory& gt, TimeNs max_di
     const TimeNs t = est[i].t_ns;
     const auto it = std::lower_bound(gt.begin(), gt.end(), t,
                                      [](const TimedPose& p, TimeNs value) { return p.t_ns < value; });
-    std::size_t j = static_cast<std::size_t>(it - gt.begin());
-    if (j == gt.size() || (j > 0 && t - gt[j - 1].t_ns <= gt[j].t_ns - t)) j = j == 0 ? 0 : j - 1;
+    std::size_t j = static_cast<std::size_t>(it - gt.begin());  // first gt pose at or after t
+    if (j == gt.size() || (j > 0 && t - gt[j - 1].t_ns <= gt[j].t_ns - t)) --j;  // the one before is as near
     const TimeNs diff = std::llabs(gt[j].t_ns - t);
     if (diff > max_diff_ns) continue;
     // Nearest indices are non-decreasing in i, so all claims on one gt pose are consecutive.
