@@ -82,7 +82,7 @@ LidarConfig load_lidar_config(const std::string& path) {
            {"loss", set_loss(g.loss)}, {"loss_scale_m", set(g.loss_scale_m)},
            {"source_edge_leaf_m", set(g.source_edge_leaf_m)},
            {"source_surface_leaf_m", set(g.source_surface_leaf_m)},
-           {"degenerate_min_eigenvalue", set(g.degenerate_min_eigenvalue)},
+           {"degenerate_min_eigenvalue_per_match", set(g.degenerate_min_eigenvalue_per_match)},
            {"remap_degenerate_directions", set(g.remap_degenerate_directions)},
            {"num_neighbors", set(a.num_neighbors)},
            {"max_neighbor_distance_m", set(a.max_neighbor_distance_m)},

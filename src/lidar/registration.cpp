@@ -60,6 +60,7 @@ struct LinearSystem {
   double cost = 0.0;
   double sum_sq = 0.0;
   int inliers = 0;
+  int residuals = 0;
 };
 
 LinearSystem build_system(const Correspondences& c, const SE3& T_W_L, const RegistrationConfig& config) {
@@ -72,6 +73,7 @@ LinearSystem build_system(const Correspondences& c, const SE3& T_W_L, const Regi
     sys.cost += rho.cost;
     sys.sum_sq += s;
     sys.inliers += s <= config.loss_scale_m * config.loss_scale_m;
+    ++sys.residuals;
   };
   Jacobian3x6 J3;
   for (const EdgeCorrespondence& e : c.edges) add(edge_residual(T_W_L, e, &J3), J3);
@@ -81,6 +83,10 @@ LinearSystem build_system(const Correspondences& c, const SE3& T_W_L, const Regi
     add(r, J1);
   }
   return sys;
+}
+
+double degeneracy_threshold(const LinearSystem& sys, const RegistrationConfig& config) {
+  return config.degenerate_min_eigenvalue_per_match * sys.residuals;
 }
 
 double cost_at(const Correspondences& c, const SE3& T_W_L, const RegistrationConfig& config) {
@@ -150,7 +156,7 @@ RegistrationResult register_scan(const FeatureScan& features_L, const FeatureMap
     if (outer == 0 && config.remap_degenerate_directions) {
       // Zhang et al. 2016 compute the degenerate directions once, at the initial guess.
       const LinearSystem sys = build_system(c, result.T_W_L, config);
-      remap = analyze_degeneracy(sys.H, config.degenerate_min_eigenvalue).well_conditioned_projection;
+      remap = analyze_degeneracy(sys.H, degeneracy_threshold(sys, config)).well_conditioned_projection;
     }
     const Vec6 step = levenberg_marquardt(c, result.T_W_L, remap, config);
     result.outer_iterations = outer + 1;
@@ -169,7 +175,7 @@ RegistrationResult register_scan(const FeatureScan& features_L, const FeatureMap
   result.matched_fraction = total > 0 ? double(matched) / total : 0.0;
   result.rms_residual_m = matched > 0 ? std::sqrt(sys.sum_sq / matched) : 0.0;
   result.inlier_fraction = matched > 0 ? double(sys.inliers) / matched : 0.0;
-  result.degeneracy = analyze_degeneracy(sys.H, config.degenerate_min_eigenvalue);
+  result.degeneracy = analyze_degeneracy(sys.H, degeneracy_threshold(sys, config));
   return result;
 }
 

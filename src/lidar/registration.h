@@ -20,7 +20,9 @@ struct RegistrationConfig {
   double loss_scale_m = 0.1;
   double source_edge_leaf_m = 0.2;     // the scan's features are voxel-downsampled before matching
   double source_surface_leaf_m = 0.4;
-  double degenerate_min_eigenvalue = 100.0;  // Zhang et al. 2016 threshold on eigenvalues of J^T J
+  // Zhang et al. 2016 threshold on the eigenvalues of J^T J, taken per matched feature so that it does not
+  // depend on how many features the scan has.
+  double degenerate_min_eigenvalue_per_match = 0.01;
   bool remap_degenerate_directions = false;  // keep the initial (prior) motion along degenerate directions
 };
 
