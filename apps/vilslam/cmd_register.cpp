@@ -1,5 +1,4 @@
 // `vilslam register`: LOAM-feature scan-to-map registration of one scan (source) onto another (target).
-#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -7,6 +6,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/json_writer.h"
 #include "io/cloud_io.h"
 #include "lidar/lidar_config.h"
 #include "vilslam/command.h"
@@ -42,47 +42,33 @@ std::string matrix_text(const Mat4& T) {
   return out.str();
 }
 
-std::string vector_json(const Vec6& v) {
-  std::ostringstream out;
-  out << std::setprecision(9) << "[";
-  for (int i = 0; i < 6; ++i) out << (i ? ", " : "") << v(i);
-  return out.str() + "]";
+void write_vector(JsonWriter& json, const Vec6& v) {
+  json.begin_array();
+  for (int i = 0; i < 6; ++i) json.value(v(i));
+  json.end_array();
 }
 
-std::string result_json(const lidar::RegistrationResult& r) {
+void write_json(const std::string& path, const lidar::RegistrationResult& r) {
+  JsonWriter json;
+  json.begin_object().key("T_target_source").begin_array();
   const Mat4 T = r.T_W_L.matrix();
-  std::ostringstream rest;
-  rest << std::setprecision(9) << "{\n  \"T_target_source\": [";
   for (int row = 0; row < 4; ++row) {
-    rest << (row ? ", [" : "[") << T(row, 0) << ", " << T(row, 1) << ", " << T(row, 2) << ", " << T(row, 3) << "]";
+    json.begin_array();
+    for (int col = 0; col < 4; ++col) json.value(T(row, col));
+    json.end_array();
   }
-  rest << "],\n";
-  rest << "  \"converged\": " << (r.converged ? "true" : "false")
-       << ",\n  \"outer_iterations\": " << r.outer_iterations << ",\n  \"edge_features\": " << r.num_edge_features
-       << ",\n  \"surface_features\": " << r.num_surface_features << ",\n  \"edge_matches\": " << r.num_edge_matches
-       << ",\n  \"surface_matches\": " << r.num_surface_matches << ",\n  \"matched_fraction\": " << r.matched_fraction
-       << ",\n  \"inlier_fraction\": " << r.inlier_fraction << ",\n  \"rms_residual_m\": " << r.rms_residual_m
-       << ",\n  \"degeneracy\": {\n    \"eigenvalues\": " << vector_json(r.degeneracy.eigenvalues)
-       << ",\n    \"min_max_ratio\": " << r.degeneracy.min_max_ratio << ",\n    \"degenerate_directions\": [";
-  for (std::size_t i = 0; i < r.degeneracy.degenerate_directions.size(); ++i) {
-    rest << (i ? ", " : "") << vector_json(r.degeneracy.degenerate_directions[i]);
-  }
-  rest << "]\n  }\n}\n";
-  return rest.str();
-}
-
-void write_text_atomically(const std::string& path, const std::string& text) {
-  const std::string temp = path + ".tmp";
-  {
-    std::ofstream out(temp, std::ios::trunc);
-    out << text;
-    out.close();
-    if (!out) {
-      std::filesystem::remove(temp);
-      throw InputError(path, "cannot write file");
-    }
-  }
-  std::filesystem::rename(temp, path);
+  json.end_array();
+  json.key("converged").value(r.converged).key("outer_iterations").value(r.outer_iterations);
+  json.key("edge_features").value(r.num_edge_features).key("surface_features").value(r.num_surface_features);
+  json.key("edge_matches").value(r.num_edge_matches).key("surface_matches").value(r.num_surface_matches);
+  json.key("matched_fraction").value(r.matched_fraction).key("inlier_fraction").value(r.inlier_fraction);
+  json.key("rms_residual_m").value(r.rms_residual_m);
+  json.key("degeneracy").begin_object().key("eigenvalues");
+  write_vector(json, r.degeneracy.eigenvalues);
+  json.key("min_max_ratio").value(r.degeneracy.min_max_ratio).key("degenerate_directions").begin_array();
+  for (const Vec6& d : r.degeneracy.degenerate_directions) write_vector(json, d);
+  json.end_array().end_object().end_object();
+  json.save(path);
 }
 
 int run(const Options& o) {
@@ -113,7 +99,7 @@ int run(const Options& o) {
             << r.degeneracy.min_max_ratio << ", " << r.degeneracy.degenerate_directions.size()
             << " degenerate direction(s)\n";
   for (const Vec6& d : r.degeneracy.degenerate_directions) std::cout << "  [rho; phi] " << d.transpose() << "\n";
-  if (!o.json.empty()) write_text_atomically(o.json, result_json(r));
+  if (!o.json.empty()) write_json(o.json, r);
   return 0;
 }
 
