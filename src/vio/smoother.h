@@ -45,6 +45,9 @@ class Smoother {
   // state's time with its biases), optimizes, and marginalizes the oldest state beyond N.
   void add_frame(const Preintegration& preint, const FrontendOutput& frame);
 
+  // Re-solves the window (add_frame does this before marginalizing).
+  void optimize();
+
   bool initialized() const { return !window_.empty(); }
   const NavState& newest() const { return window_.back().x; }
   // Covariance of the newest state: its 15x15 block of the inverse of the window's H after the solve.
@@ -71,7 +74,6 @@ class Smoother {
   std::optional<LinearFactor> vision_factor(const std::vector<TrackObservation>& track,
                                             const std::vector<NavState>& states) const;
   int reject_outliers(const std::vector<NavState>& states);
-  void optimize();
   void marginalize_oldest();
   int slot_of(std::uint64_t id) const;
 
