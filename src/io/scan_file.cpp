@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "io/cloud_io.h"
 
 namespace vilslam {
 namespace {
@@ -108,21 +109,16 @@ std::size_t check_scan_file(const std::string& path) {
 }
 
 LidarScan read_kitti_scan(const std::string& path) {
-  const std::vector<char> bytes = read_all(path);
-  if (bytes.size() % 16 != 0) throw InputError(path, "size " + std::to_string(bytes.size()) + " is not a multiple of 16 bytes");
+  const PointCloud cloud = read_cloud(path);
   LidarScan scan;
   scan.has_ring = false;
-  scan.points.resize(bytes.size() / 16);
-  for (std::size_t i = 0; i < scan.points.size(); ++i) {
-    const char* p = bytes.data() + 16 * i;
+  scan.points.resize(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
     LidarPoint& q = scan.points[i];
-    q.x = load<float>(p);
-    q.y = load<float>(p + 4);
-    q.z = load<float>(p + 8);
-    q.intensity = load<float>(p + 12);
-    if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z) || !std::isfinite(q.intensity)) {
-      throw InputError(path, "point " + std::to_string(i) + " has a non-finite value");
-    }
+    q.x = cloud.points[i].x();
+    q.y = cloud.points[i].y();
+    q.z = cloud.points[i].z();
+    q.intensity = cloud.intensity.empty() ? 0.0f : cloud.intensity[i];
   }
   return scan;
 }

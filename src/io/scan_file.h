@@ -22,6 +22,7 @@ void write_scan_file(const std::string& path, const LidarScan& scan);
 // Cheap check: magic and header against the file size; returns num_points.
 std::size_t check_scan_file(const std::string& path);
 
+// Through read_cloud (cloud_io.h): has_ring = false, t_offset_s = 0.
 LidarScan read_kitti_scan(const std::string& path);
 // Cheap check: the size is a multiple of 16 bytes; returns the number of points.
 std::size_t check_kitti_scan(const std::string& path);
