@@ -183,6 +183,24 @@ void remove_if_exists(const fs::path& p) {
   fs::remove_all(p, ec);
 }
 
+// Removes the temporary side outputs unless the run completed (no half-written leftovers on errors).
+struct PartialCleanup {
+  std::vector<fs::path> paths;
+  bool completed = false;
+  ~PartialCleanup() {
+    if (!completed)
+      for (const fs::path& p : paths) remove_if_exists(p);
+  }
+};
+
+// A TUM copy of the ground truth for trajectory tools, written next to the temporary KITTI folder.
+void write_tum_copy(const std::vector<GroundTruthState>& states, const fs::path& path) {
+  Trajectory poses;
+  poses.reserve(states.size());
+  for (const GroundTruthState& g : states) poses.push_back({g.t_ns, g.T_W_I});
+  write_trajectory(path.string(), poses, TrajectoryFormat::kTum);
+}
+
 }  // namespace
 
 SequenceReport simulate(const SimConfig& config, const SimulateRequest& request) {
@@ -197,6 +215,8 @@ SequenceReport simulate(const SimConfig& config, const SimulateRequest& request)
 
   DatasetWriter writer(request.out_dir, calib, request.overwrite);
   const fs::path kitti_partial = fs::path(request.out_dir).concat(".kitti.partial");
+  const fs::path tum_partial = fs::path(request.out_dir).concat(".groundtruth.tum.partial");
+  PartialCleanup cleanup{{kitti_partial, tum_partial}};
   remove_if_exists(kitti_partial);
   KittiWriter kitti(kitti_partial.string(), calib);
 
@@ -210,14 +230,18 @@ SequenceReport simulate(const SimConfig& config, const SimulateRequest& request)
   write_frames(config, request, scene, calib, imu, writer, report);
   write_scans(config, request, scene, calib, imu, writer, kitti, report);
   kitti.finish();
+  write_tum_copy(imu.groundtruth, tum_partial);
   const double spacing_m = request.preview ? std::max(config.model_spacing_m, 0.2) : config.model_spacing_m;
   writer.set_reference_model(scene.world.sample_surfaces(spacing_m));
   writer.finish();
 
-  const fs::path kitti_dir = fs::path(request.out_dir) / "kitti";
-  std::error_code ec;
-  fs::rename(kitti_partial, kitti_dir, ec);
-  if (ec) throw InputError(kitti_dir.string(), "cannot move the KITTI folder into place: " + ec.message());
+  for (const auto& [from, to] : {std::pair{kitti_partial, fs::path(request.out_dir) / "kitti"},
+                                  std::pair{tum_partial, fs::path(request.out_dir) / "groundtruth.tum"}}) {
+    std::error_code ec;
+    fs::rename(from, to, ec);
+    if (ec) throw InputError(to.string(), "cannot move into place: " + ec.message());
+  }
+  cleanup.completed = true;
   return report;
 }
 
