@@ -135,9 +135,13 @@ void write_frames(const SimConfig& config, const SimulateRequest& request, const
         image = render_image(scene.world, *cams[cam], T_W_C, t_ns, options);
       }
       StereoFrame& frame = frames[job / 2];
+      if (cam == 1) {
+        frame.right = image;
+        return;
+      }
       frame.t_ns = t_ns + offset_ns;
-      (cam == 0 ? frame.left : frame.right) = image;
-      if (cam == 0 && request.report) corners[job / 2] = count_corners(image);
+      frame.left = image;
+      if (request.report) corners[job / 2] = count_corners(image);
     });
     for (std::size_t i = 0; i < n; ++i) {
       writer.add_stereo(frames[i]);
