@@ -202,6 +202,17 @@ SimConfig load_sim_config(const std::string& path) {
   return c;
 }
 
+RouteMotionConfig route_motion_config(const SimConfig& config, Scenario scenario) {
+  RouteMotionConfig c = config.motion;
+  if (scenario == Scenario::kOutdoor) {
+    c.cruise_speed_m_s = config.outdoor_speed_m_s;
+    c.ramp_s = config.outdoor_ramp_s;
+    c.control_spacing_m = config.outdoor_control_spacing_m;
+  }
+  c.start_ns = config.start_time_ns;
+  return c;
+}
+
 RigCalibration rig_calibration(const SimConfig& config) {
   Mat3 R_I_C;
   R_I_C.col(0) = -Vec3::UnitY();

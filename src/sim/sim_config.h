@@ -10,6 +10,7 @@
 #include "sim/imu_sim.h"
 #include "sim/lidar_sim.h"
 #include "sim/trajectory.h"
+#include "sim/world.h"
 
 namespace vilslam::sim {
 
@@ -44,6 +45,9 @@ struct SimConfig {
 
 // Throws InputError naming the file for missing files, YAML errors, unknown keys and bad values.
 SimConfig load_sim_config(const std::string& path);
+
+// The route motion of a scenario: walking indoors, the outdoor speed, ramp and spacing outdoors.
+RouteMotionConfig route_motion_config(const SimConfig& config, Scenario scenario);
 
 // The dataset's calibration: intrinsics, extrinsics and IMU noise (faults are not recorded).
 RigCalibration rig_calibration(const SimConfig& config);

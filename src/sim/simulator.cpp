@@ -28,19 +28,6 @@ std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t stream, std::uint64_t i
   return z ^ (z >> 31);
 }
 
-bool is_outdoor(Scenario s) { return s == Scenario::kOutdoor; }
-
-RouteMotionConfig route_config(const SimConfig& config, Scenario scenario) {
-  RouteMotionConfig c = config.motion;
-  if (is_outdoor(scenario)) {
-    c.cruise_speed_m_s = config.outdoor_speed_m_s;
-    c.ramp_s = config.outdoor_ramp_s;
-    c.control_spacing_m = config.outdoor_control_spacing_m;
-  }
-  c.start_ns = config.start_time_ns;
-  return c;
-}
-
 struct Scene {
   World world;
   std::unique_ptr<BodyMotion> motion;
@@ -49,7 +36,7 @@ struct Scene {
 // The world and the motion through it: a recorded ground truth, or the world's closed route flown at
 // the configured speed (or at the speed that makes it last request.duration_s).
 Scene make_scene(const SimConfig& config, const SimulateRequest& request) {
-  RouteMotionConfig motion_config = route_config(config, request.scenario);
+  RouteMotionConfig motion_config = route_motion_config(config, request.scenario);
   double length_m = request.length_m;
   if (request.duration_s > 0 && length_m <= 0)
     length_m = motion_config.cruise_speed_m_s *
