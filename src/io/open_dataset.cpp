@@ -1,0 +1,30 @@
+// Layout detection: the project's format (rig.yaml or mav0/lidar0), EuRoC ASL (mav0/), KITTI odometry.
+#include <filesystem>
+
+#include "common/error.h"
+#include "io/dataset_index.h"
+
+namespace vilslam {
+
+DatasetIndex index_dataset(const std::string& root) {
+  namespace fs = std::filesystem;
+  const fs::path dir(root);
+  if (!fs::exists(dir)) throw InputError(root, "dataset folder does not exist");
+  if (!fs::is_directory(dir)) throw InputError(root, "not a folder");
+  DatasetIndex index;
+  if (fs::exists(dir / "rig.yaml") || fs::exists(dir / "mav0" / "lidar0")) {
+    index = index_vilslam(root);
+  } else if (fs::is_directory(dir / "mav0")) {
+    index = index_euroc(root);
+  } else if (fs::exists(dir / "calib.txt") && fs::exists(dir / "times.txt")) {
+    index = index_kitti(root);
+  } else {
+    throw InputError(root, "unknown dataset layout (expected mav0/, rig.yaml, or KITTI calib.txt and times.txt)");
+  }
+  finalize_summary(index);
+  return index;
+}
+
+std::unique_ptr<DatasetReader> open_dataset(const std::string& path) { return open_indexed(index_dataset(path)); }
+
+}  // namespace vilslam

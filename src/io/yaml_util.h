@@ -1,0 +1,41 @@
+#pragma once
+// yaml-cpp helpers shared by the calibration readers: loading OpenCV-style files ("%YAML:1.0"),
+// typed field access and 4x4 rigid transforms, every failure an InputError naming the file.
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+#include <vector>
+
+#include "common/lie.h"
+
+namespace vilslam {
+
+// Largest orthonormality_error accepted for a rotation read from a file: the files print 9 to 17
+// significant digits, so a true rotation is orthonormal to ~1e-9; 1e-5 leaves room for hand edits.
+constexpr double kRotationTolerance = 1e-5;
+
+// Loads a YAML file; an OpenCV "%YAML:1.0" first line is accepted. Missing or malformed: InputError.
+YAML::Node load_yaml_file(const std::string& path);
+
+// node[key] must exist and convert; otherwise InputError(file, "<key>: ...").
+double yaml_double(const YAML::Node& node, const std::string& key, const std::string& file);
+int yaml_int(const YAML::Node& node, const std::string& key, const std::string& file);
+std::string yaml_string(const YAML::Node& node, const std::string& key, const std::string& file);
+std::vector<double> yaml_doubles(const YAML::Node& node, const std::string& key, const std::string& file,
+                                 std::size_t expected_size);
+
+// A 4x4 rigid transform stored as EuRoC {rows: 4, cols: 4, data: [16]}, a nested 4x4 list (Kalibr)
+// or a flat list of 16 numbers (row-major). The last row must be 0 0 0 1, the rotation orthonormal
+// within kRotationTolerance.
+SE3 yaml_transform(const YAML::Node& node, const std::string& key, const std::string& file);
+
+// Writing: shortest decimal that reads back to the same double ("%.17g"), and "[a, b, c]".
+std::string yaml_number(double v);
+std::string yaml_list(const std::vector<double>& values);
+// Row-major entries of T as a list of 16 numbers.
+std::vector<double> transform_entries(const SE3& T);
+
+// Checks a rotation read from a file (InputError naming file and what).
+void require_rotation(const Mat3& R, const std::string& what, const std::string& file);
+
+}  // namespace vilslam

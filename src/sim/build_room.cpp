@@ -1,0 +1,102 @@
+// The room: a textured box the size of the EuRoC Vicon room (V1 sequences fly inside it) with clutter
+// on the walls and the floor, and a route looping inside.
+#include <algorithm>
+#include <cmath>
+
+#include "sim/enclosure.h"
+#include "sim/route.h"
+#include "sim/world_builders.h"
+
+namespace vilslam::sim {
+namespace {
+
+// The EuRoC V1 ground truth spans x [-2.3, 2.2], y [-2.5, 3.5], z [0.8, 2.6]; V2 reaches x -3.8.
+const Eigen::AlignedBox3d kRoom(Vec3(-4.5, -3.6, 0.0), Vec3(3.7, 4.6, 4.0));
+const Eigen::Vector2d kRouteCenter(0.0, 0.5);
+
+// An ellipse at a height that rises and falls twice per lap, sampled every ~step_m; first == last.
+std::vector<Vec3> elliptic_loop(double rx, double ry, double step_m) {
+  const int n = std::max(16, static_cast<int>(std::ceil(M_PI * (rx + ry) / step_m)));
+  std::vector<Vec3> route;
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * M_PI * k / n;
+    route.emplace_back(kRouteCenter.x() + rx * std::cos(a), kRouteCenter.y() + ry * std::sin(a), 1.3 + 0.3 * std::sin(2 * a));
+  }
+  route.push_back(route.front());
+  return route;
+}
+
+// Random posters and wall-mounted boxes on one wall quad running along `dir` from `start`.
+void dress_wall(SceneBuilder& builder, Quad& wall, const Vec3& start, const Vec3& dir, double length, int poster,
+                int clutter, bool boxes) {
+  Rng& rng = builder.rng();
+  for (int k = 0; k < 10; ++k) {
+    const double w = rng.uniform(0.4, 1.2), h = rng.uniform(0.4, 1.0);
+    const double u = rng.uniform(0.2, length - 0.2 - w), v = rng.uniform(0.3, 3.6 - h);
+    wall.decals.push_back({0, Eigen::AlignedBox2d(Eigen::Vector2d(u, v), Eigen::Vector2d(u + w, v + h)), poster});
+  }
+  if (!boxes) return;
+  const Vec3 inward = Vec3::UnitZ().cross(dir);
+  for (int k = 0; k < 6; ++k) {
+    const double w = rng.uniform(0.3, 0.8), h = rng.uniform(0.2, 0.6), depth = rng.uniform(0.15, 0.3);
+    const double u = rng.uniform(0.3, length - 0.3 - w), z = rng.uniform(0.2, 3.5 - h);
+    const Vec3 center = start + (u + 0.5 * w) * dir + 0.5 * depth * inward + Vec3(0, 0, z + 0.5 * h);
+    Mat3 R;
+    R << dir, inward, Vec3::UnitZ();
+    builder.add(Box(center, R, Vec3(0.5 * w, 0.5 * depth, 0.5 * h)), clutter);
+  }
+}
+
+}  // namespace
+
+void build_room(SceneBuilder& builder, double length_m) {
+  Rng& rng = builder.rng();
+  using K = Material::Kind;
+  const int floor = builder.material(K::kConcrete, 0.4f, 0.3f);
+  const int wall = builder.material(K::kConcrete, 0.6f, 0.25f);
+  const int ceiling = builder.material(K::kConcrete, 0.7f, 0.15f);
+  const int poster = builder.material(K::kPoster, 0.5f, 0.7f);
+  std::vector<int> clutter;
+  for (int k = 0; k < 4; ++k) clutter.push_back(builder.material(K::kClutter, rng.uniform(0.3f, 0.7f), 0.4f));
+  auto any_clutter = [&]() { return clutter[rng.integer(0, static_cast<int>(clutter.size()) - 1)]; };
+
+  // One lap of about length_m, as large as the room allows.
+  const double nominal = M_PI * (3 * 4.2 - std::sqrt((3 * 1.8 + 2.4) * (1.8 + 3 * 2.4)));  // Ramanujan's perimeter
+  const double scale = std::min(length_m / nominal, 1.2);
+  builder.set_route(elliptic_loop(1.8 * scale, 2.4 * scale, 0.25));
+
+  const Enclosure walls = add_enclosure(builder, kRoom, Walls{floor, ceiling, wall});
+  const Vec3 lo = kRoom.min(), hi = kRoom.max();
+  const Vec3 starts[4] = {lo, Vec3(hi.x(), lo.y(), 0), Vec3(hi.x(), hi.y(), 0), Vec3(lo.x(), hi.y(), 0)};
+  const Vec3 dirs[4] = {Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitX(), -Vec3::UnitY()};
+  for (int k = 0; k < 4; ++k) {
+    const double length = (k % 2 == 0) ? kRoom.sizes().x() : kRoom.sizes().y();
+    dress_wall(builder, *walls.walls[k], starts[k], dirs[k], length, poster, any_clutter(), k != 3);
+  }
+  // Floor clutter: low mats and boxes in the middle, taller boxes and stands along the walls.
+  for (int k = 0; k < 6; ++k) {
+    const Vec3 c(rng.uniform(-2.5, 2.0), rng.uniform(-2.5, 3.5), 0);
+    const double w = rng.uniform(0.5, 1.5), d = rng.uniform(0.5, 1.5), h = rng.uniform(0.05, 0.35);
+    builder.add(Box(c + Vec3(0, 0, 0.5 * h), Eigen::AngleAxisd(rng.uniform(0, M_PI), Vec3::UnitZ()).toRotationMatrix(),
+                    Vec3(0.5 * w, 0.5 * d, 0.5 * h)),
+                any_clutter());
+  }
+  for (int k = 0; k < 10; ++k) {
+    const double w = rng.uniform(0.3, 0.7), h = rng.uniform(0.3, 1.5);
+    const int side = rng.integer(0, 2);  // not along the x = min wall, where V2 flies close
+    const double along = rng.uniform(0.6, (side % 2 == 0 ? kRoom.sizes().x() : kRoom.sizes().y()) - 0.6);
+    const Vec3 inward = Vec3::UnitZ().cross(dirs[side]);
+    const Vec3 c = starts[side] + along * dirs[side] + (0.5 * w + 0.05) * inward + Vec3(0, 0, 0.5 * h);
+    builder.add(Box(c, Mat3::Identity(), Vec3(0.5 * w, 0.5 * w, 0.5 * h)), any_clutter());
+  }
+  for (const Eigen::Vector2d corner : {Eigen::Vector2d(hi.x() - 0.5, lo.y() + 0.5), Eigen::Vector2d(hi.x() - 0.5, hi.y() - 0.5),
+                                       Eigen::Vector2d(lo.x() + 0.5, hi.y() - 0.5)}) {
+    builder.add(Cylinder(corner, 0.0, rng.uniform(1.2, 2.5), rng.uniform(0.15, 0.3)), any_clutter());
+  }
+  // Two ceiling beams across the room.
+  for (const double y : {-0.8, 2.2}) {
+    builder.add(Box::axis_aligned(Vec3(lo.x(), y - 0.15, 3.6), Vec3(hi.x(), y + 0.15, 3.85)), any_clutter());
+  }
+}
+
+}  // namespace vilslam::sim

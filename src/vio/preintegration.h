@@ -1,0 +1,60 @@
+#pragma once
+// IMU preintegration on the manifold (Forster et al., "On-Manifold Preintegration for Real-Time
+// Visual-Inertial Odometry", T-RO 2017). Deltas, first-order bias Jacobians and the 9x9 covariance of
+// [dphi, dv, dp] are propagated sample by sample with Euler steps (eq. (38) / Appendix A, B).
+#include <Eigen/Core>
+#include <vector>
+
+#include "common/calibration.h"
+#include "common/types.h"
+
+namespace vilslam {
+
+using Mat9 = Eigen::Matrix<double, 9, 9>;
+
+class Preintegration {
+ public:
+  // Preintegrates with the bias estimate (bias_gyro, bias_accel) held fixed (Forster's b_bar_i).
+  Preintegration(const Vec3& bias_gyro_rad_s, const Vec3& bias_accel_m_s2, const ImuNoise& noise);
+
+  // One Euler step of length dt_s with raw measurements held constant over the step.
+  void integrate(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, double dt_s);
+
+  double dt_s() const { return dt_s_; }
+  const Vec3& bias_gyro_lin() const { return bias_gyro_; }
+  const Vec3& bias_accel_lin() const { return bias_accel_; }
+  const Mat3& delta_R() const { return delta_R_; }
+  const Vec3& delta_v() const { return delta_v_; }
+  const Vec3& delta_p() const { return delta_p_; }
+  const Mat3& dR_dbg() const { return dR_dbg_; }
+  const Mat3& dv_dbg() const { return dv_dbg_; }
+  const Mat3& dv_dba() const { return dv_dba_; }
+  const Mat3& dp_dbg() const { return dp_dbg_; }
+  const Mat3& dp_dba() const { return dp_dba_; }
+  // Covariance of the preintegrated noise [dphi; dv; dp] (eq. (62)).
+  const Mat9& covariance() const { return covariance_; }
+  const ImuNoise& noise() const { return noise_; }
+
+  // Deltas corrected to the biases (bg, ba) to first order (eq. (44)).
+  Mat3 corrected_delta_R(const Vec3& bias_gyro_rad_s) const;
+  Vec3 corrected_delta_v(const Vec3& bias_gyro_rad_s, const Vec3& bias_accel_m_s2) const;
+  Vec3 corrected_delta_p(const Vec3& bias_gyro_rad_s, const Vec3& bias_accel_m_s2) const;
+
+ private:
+  Vec3 bias_gyro_, bias_accel_;
+  ImuNoise noise_;
+  double dt_s_ = 0;
+  Mat3 delta_R_ = Mat3::Identity();
+  Vec3 delta_v_ = Vec3::Zero(), delta_p_ = Vec3::Zero();
+  Mat3 dR_dbg_ = Mat3::Zero(), dv_dbg_ = Mat3::Zero(), dv_dba_ = Mat3::Zero();
+  Mat3 dp_dbg_ = Mat3::Zero(), dp_dba_ = Mat3::Zero();
+  Mat9 covariance_ = Mat9::Zero();
+};
+
+// Integrates the samples over [t0_ns, t1_ns]. The signal is taken as piecewise linear between samples;
+// each Euler step spans the overlap of [t0, t1] with one sample interval and uses the interpolated
+// measurement at the step's midpoint. Outside the samples' span the nearest sample is held.
+// Throws std::invalid_argument when samples is empty or t1_ns < t0_ns.
+void integrate_samples(const std::vector<ImuSample>& samples, TimeNs t0_ns, TimeNs t1_ns, Preintegration& preint);
+
+}  // namespace vilslam

@@ -1,0 +1,66 @@
+#include "vio/vio.h"
+
+#include <algorithm>
+
+#include "common/error.h"
+
+namespace vilslam {
+namespace {
+
+constexpr const char* kSource = "vio input";
+
+}  // namespace
+
+Vio::Vio(const RigCalibration& calib, const VioConfig& config)
+    : config_(config),
+      calib_(calib),
+      smoother_(config.smoother, {calib.T_I_C0, calib.T_I_C1}, calib.imu, calib.cam0.fx),
+      propagator_(calib.imu, Vec3(0, 0, -config.smoother.gravity_m_s2)) {}
+
+void Vio::add_imu(const ImuSample& sample) {
+  if (!sample.gyro_rad_s.allFinite() || !sample.accel_m_s2.allFinite()) {
+    throw InputError(kSource, "IMU sample at t_ns " + std::to_string(sample.t_ns) + " is not finite");
+  }
+  if (!imu_.empty() && sample.t_ns <= imu_.back().t_ns) {
+    throw InputError(kSource, "IMU sample at t_ns " + std::to_string(sample.t_ns) + " is not after the previous one");
+  }
+  imu_.push_back(sample);
+  if (!initialized() || sample.t_ns <= smoother_.newest().t_ns) return;
+  const NavState x = propagator_.add(sample);
+  latest_imu_ = VioImuOutput{x.t_ns, x.T_W_I(), x.v_W_m_s};
+  if (on_imu_) on_imu_(*latest_imu_);
+}
+
+void Vio::add_frame(const FrontendOutput& frame) {
+  if (initialized() && frame.t_ns <= smoother_.newest().t_ns) {
+    throw InputError(kSource, "frame at t_ns " + std::to_string(frame.t_ns) + " is not after the previous one");
+  }
+  if (imu_.empty() || imu_.front().t_ns > frame.t_ns) return;
+  if (!initialized()) {
+    const Initialization init = static_initialization(imu_, frame.t_ns, config_.initializer);
+    Vec15 sigma;
+    sigma << Vec3::Constant(config_.prior_rotation_sigma_rad), Vec3::Constant(config_.prior_position_sigma_m),
+        Vec3::Constant(init.is_static ? config_.prior_velocity_sigma_m_s : config_.moving_velocity_sigma_m_s),
+        Vec3::Constant(config_.prior_gyro_bias_sigma_rad_s), Vec3::Constant(config_.prior_accel_bias_sigma_m_s2);
+    smoother_.initialize(init.state, sigma, frame);
+  } else {
+    const NavState& x = smoother_.newest();
+    Preintegration preint(x.bias_gyro_rad_s, x.bias_accel_m_s2, calib_.imu);
+    integrate_samples(imu_, x.t_ns, frame.t_ns, preint);
+    smoother_.add_frame(preint, frame);
+  }
+  // Keep the samples from the last one at or before the newest state on.
+  const TimeNs t_ns = smoother_.newest().t_ns;
+  const auto first_after = std::upper_bound(imu_.begin(), imu_.end(), t_ns,
+                                            [](TimeNs t, const ImuSample& s) { return t < s.t_ns; });
+  imu_.erase(imu_.begin(), first_after == imu_.begin() ? first_after : first_after - 1);
+  propagator_.reset(smoother_.newest(), imu_);
+  publish_state();
+}
+
+void Vio::publish_state() {
+  latest_state_ = VioStateOutput{smoother_.newest(), smoother_.newest_covariance(), smoother_.stats().landmarks};
+  if (on_state_) on_state_(*latest_state_);
+}
+
+}  // namespace vilslam

@@ -1,0 +1,77 @@
+#pragma once
+// The stereo VIO: IMU samples and the visual frontend's stereo matches in, camera-rate optimized states
+// and IMU-rate propagated poses out (paper Sec. "Stereo visual inertial odometry").
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "common/calibration.h"
+#include "common/types.h"
+#include "frontend/stereo_match.h"
+#include "vio/initializer.h"
+#include "vio/propagator.h"
+#include "vio/smoother.h"
+
+namespace vilslam {
+
+struct VioConfig {
+  SmootherConfig smoother;
+  InitializerConfig initializer;
+  // Standard deviations of the first state's prior: rotation (rad), position (m), velocity (m/s),
+  // gyro bias (rad/s), accel bias (m/s^2). Yaw and position are a gauge choice; a moving start gets a
+  // wider velocity prior (moving_velocity_sigma_m_s).
+  double prior_rotation_sigma_rad = 0.02;
+  double prior_position_sigma_m = 1e-3;
+  double prior_velocity_sigma_m_s = 0.05;
+  double moving_velocity_sigma_m_s = 1.0;
+  double prior_gyro_bias_sigma_rad_s = 0.01;
+  double prior_accel_bias_sigma_m_s2 = 0.2;
+};
+
+// Optimized state at a stereo frame.
+struct VioStateOutput {
+  NavState state;
+  Mat15 covariance;  // tangent ordering of window_state.h
+  int landmarks = 0;
+};
+
+// Propagated state at an IMU sample.
+struct VioImuOutput {
+  TimeNs t_ns = 0;
+  SE3 T_W_I;
+  Vec3 v_W_m_s = Vec3::Zero();
+};
+
+class Vio {
+ public:
+  explicit Vio(const RigCalibration& calib, const VioConfig& config = {});
+
+  // Samples must arrive in strictly increasing time; feed every sample up to a frame's time before it.
+  // Throws InputError for a sample out of order or not finite.
+  void add_imu(const ImuSample& sample);
+  // Throws InputError for a frame out of order. A frame before any IMU sample is skipped.
+  void add_frame(const FrontendOutput& frame);
+
+  void on_state(std::function<void(const VioStateOutput&)> callback) { on_state_ = std::move(callback); }
+  void on_imu_pose(std::function<void(const VioImuOutput&)> callback) { on_imu_ = std::move(callback); }
+
+  bool initialized() const { return smoother_.initialized(); }
+  const std::optional<VioStateOutput>& latest_state() const { return latest_state_; }
+  const std::optional<VioImuOutput>& latest_imu_pose() const { return latest_imu_; }
+  const Smoother& smoother() const { return smoother_; }
+
+ private:
+  void publish_state();
+
+  VioConfig config_;
+  RigCalibration calib_;
+  Smoother smoother_;
+  Propagator propagator_;
+  std::vector<ImuSample> imu_;  // samples from just before the newest state on
+  std::optional<VioStateOutput> latest_state_;
+  std::optional<VioImuOutput> latest_imu_;
+  std::function<void(const VioStateOutput&)> on_state_;
+  std::function<void(const VioImuOutput&)> on_imu_;
+};
+
+}  // namespace vilslam

@@ -1,0 +1,131 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "sim/route.h"
+#include "sim/world.h"
+#include "test_util.h"
+
+namespace vilslam::sim {
+namespace {
+
+const Scenario kAll[] = {Scenario::kHighbay, Scenario::kHallway, Scenario::kTunnel,
+                         Scenario::kLoop,    Scenario::kOutdoor, Scenario::kRoom};
+
+class WorldTest : public ::testing::TestWithParam<Scenario> {};
+
+TEST_P(WorldTest, RouteIsClosedClearAndOfThePresetLength) {
+  const World world = World::generate(GetParam(), 7);
+  const auto& route = world.route_W();
+  ASSERT_GT(route.size(), 10u);
+  EXPECT_EQ(route.front(), route.back());
+  const double length = polyline_length(route);
+  EXPECT_NEAR(length, preset_length_m(GetParam()), 0.05 * preset_length_m(GetParam()));
+  double clearance = 1e9, max_step = 0, max_turn = 0;
+  for (std::size_t i = 1; i < route.size(); ++i) {
+    clearance = std::min({clearance, world.distance_to_surface(route[i]),
+                          world.distance_to_surface(0.5 * (route[i] + route[i - 1]))});
+    max_step = std::max(max_step, (route[i] - route[i - 1]).norm());
+    const std::size_t next = i + 1 < route.size() ? i + 1 : 1;
+    const Vec3 d0 = (route[i] - route[i - 1]).normalized(), d1 = (route[next] - route[i]).normalized();
+    max_turn = std::max(max_turn, std::acos(std::clamp(d0.dot(d1), -1.0, 1.0)));
+  }
+  EXPECT_GE(clearance, 0.5) << scenario_name(GetParam());
+  EXPECT_LE(max_step, 0.6);
+  EXPECT_LT(max_turn, 0.5) << "turns too sharp for a smooth spline";
+  // Every waypoint is inside the world (a ray straight down meets the floor or ground).
+  for (std::size_t i = 0; i < route.size(); i += 10) {
+    EXPECT_TRUE(world.raycast(route[i], -Vec3::UnitZ(), 5.0).has_value()) << i;
+  }
+  std::printf("%s: length %.1f m, clearance %.2f m, %zu waypoints\n", scenario_name(GetParam()).c_str(), length,
+              clearance, route.size());
+}
+
+TEST_P(WorldTest, TargetLengthOverridesThePreset) {
+  const double target = GetParam() == Scenario::kRoom ? 10.0 : 150.0;
+  const World world = World::generate(GetParam(), 3, target);
+  EXPECT_NEAR(polyline_length(world.route_W()), target, 0.05 * target);
+}
+
+TEST_P(WorldTest, GenerationIsDeterministicPerSeed) {
+  const World a = World::generate(GetParam(), 11), b = World::generate(GetParam(), 11);
+  const World c = World::generate(GetParam(), 12);
+  ASSERT_EQ(a.route_W().size(), b.route_W().size());
+  for (std::size_t i = 0; i < a.route_W().size(); ++i) EXPECT_EQ(a.route_W()[i], b.route_W()[i]);
+  ASSERT_EQ(a.materials().size(), b.materials().size());
+  for (std::size_t i = 0; i < a.materials().size(); ++i) EXPECT_EQ(a.materials()[i].seed, b.materials()[i].seed);
+  // The same rays see the same hits in a and b; a different seed changes some of them.
+  const Vec3 o = a.route_W()[a.route_W().size() / 3];
+  int differ = 0;
+  for (int k = 0; k < 360; ++k) {
+    const Vec3 d(std::cos(k * M_PI / 180), std::sin(k * M_PI / 180), 0.2 * std::sin(k * 0.1));
+    const auto ha = a.raycast(o, d.normalized(), 80), hb = b.raycast(o, d.normalized(), 80);
+    const auto hc = c.raycast(o, d.normalized(), 80);
+    ASSERT_EQ(ha.has_value(), hb.has_value());
+    if (ha) {
+      EXPECT_EQ(ha->range_m, hb->range_m);
+      EXPECT_EQ(ha->material, hb->material);
+      EXPECT_EQ(ha->uv_m, hb->uv_m);
+    }
+    if (ha.has_value() != hc.has_value() || (ha && (ha->range_m != hc->range_m || ha->uv_m != hc->uv_m))) ++differ;
+  }
+  EXPECT_GT(differ, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenarios, WorldTest, ::testing::ValuesIn(kAll),
+                         [](const auto& info) { return scenario_name(info.param); });
+
+TEST(World, ParseScenarioRoundTripsAndRejectsUnknownNames) {
+  for (const Scenario s : kAll) EXPECT_EQ(parse_scenario(scenario_name(s)), s);
+  EXPECT_THROW(parse_scenario("cave"), std::invalid_argument);
+}
+
+TEST(World, RoomContainsTheEurocV1Trajectories) {
+  VILSLAM_REQUIRE_SHARED_DATA(dir, "euroc/groundtruth");
+  const World world = World::generate(Scenario::kRoom, 1);
+  for (const char* name : {"V1_01_easy.txt", "V1_02_medium.txt", "V1_03_difficult.txt"}) {
+    std::ifstream in(dir + "/" + name);
+    ASSERT_TRUE(in) << name;
+    std::string line;
+    double clearance = 1e9;
+    int n = 0;
+    while (std::getline(in, line)) {
+      if (line.empty() || line[0] == '#') continue;
+      std::istringstream ss(line);
+      double t;
+      Vec3 p;
+      ss >> t >> p.x() >> p.y() >> p.z();
+      if (n++ % 20) continue;
+      EXPECT_TRUE(world.bounds().contains(p)) << name << " " << p.transpose();
+      clearance = std::min(clearance, world.distance_to_surface(p));
+    }
+    EXPECT_GT(n, 1000) << name;
+    EXPECT_GT(clearance, 0.3) << name;
+  }
+}
+
+TEST(World, SurfaceSamplesLieOnSurfacesAndHiddenFacesAreLeftOut) {
+  const World world = World::generate(Scenario::kHighbay, 5);
+  const PointCloud cloud = world.sample_surfaces(0.2);
+  ASSERT_GT(cloud.size(), 10000u);
+  ASSERT_EQ(cloud.intensity.size(), cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); i += 97) {
+    EXPECT_LT(world.distance_to_surface(cloud.points[i].cast<double>()), 1e-4);
+    EXPECT_TRUE(world.bounds().contains(cloud.points[i].cast<double>()));
+  }
+  // Halving the spacing gives about four times the points.
+  const double ratio = static_cast<double>(world.sample_surfaces(0.1).size()) / cloud.size();
+  EXPECT_NEAR(ratio, 4.0, 0.6);
+  // No sample lies below the floor or at the bottom of a box standing on it.
+  for (const auto& p : cloud.points) ASSERT_GT(p.z(), -1e-4);
+  std::size_t on_floor = 0;
+  for (const auto& p : cloud.points) on_floor += std::abs(p.z()) < 1e-4;
+  const Eigen::AlignedBox3d b = world.bounds();
+  const double floor_cells = b.sizes().x() * b.sizes().y() / 0.04;
+  EXPECT_LT(on_floor, floor_cells * 1.001) << "box bottoms on the floor were sampled";
+}
+
+}  // namespace
+}  // namespace vilslam::sim
