@@ -23,7 +23,20 @@ struct SmootherRun {
   NavState newest, truth;
 };
 
-SmootherRun run_smoother(int frames, int window, std::uint32_t seed) {
+// Observations of the truth; tracks with id % outlier_modulus == 0 get 8 px of noise on the left image.
+FrontendOutput observe_with_outliers(const NavState& truth, const std::vector<Vec3>& landmarks,
+                                     const StereoExtrinsics& extr, double sigma_norm, int outlier_modulus,
+                                     std::mt19937& rng) {
+  FrontendOutput out = test::observe(truth, landmarks, extr, sigma_norm, rng);
+  std::normal_distribution<double> gross(0.0, 8.0 / kFocalPx);
+  for (StereoMatch& m : out.matches) {
+    if (outlier_modulus > 0 && m.track_id % outlier_modulus == 0) m.left_norm += Eigen::Vector2d(gross(rng), gross(rng));
+  }
+  return out;
+}
+
+SmootherRun run_smoother(int frames, int window, std::uint32_t seed, int outlier_modulus = 0,
+                         double outlier_normal_quantile = SmootherConfig{}.outlier_normal_quantile) {
   const test::AnalyticMotion motion;
   const StereoExtrinsics extr = test::test_extrinsics();
   const std::vector<Vec3> landmarks = test::test_landmarks(400, seed);
@@ -46,13 +59,14 @@ SmootherRun run_smoother(int frames, int window, std::uint32_t seed) {
   SmootherConfig config;
   config.window_size = window;
   config.pixel_sigma_px = 0.5;
+  config.outlier_normal_quantile = outlier_normal_quantile;
   Smoother smoother(config, extr, noise, kFocalPx);
   const double sigma_norm = config.pixel_sigma_px / kFocalPx;
   NavState x0 = motion.state(t0);
   Vec15 sigma;
   sigma << Vec3::Constant(1e-3), Vec3::Constant(1e-3), Vec3::Constant(0.01), Vec3::Constant(0.01),
       Vec3::Constant(0.1);
-  smoother.initialize(x0, sigma, test::observe(x0, landmarks, extr, sigma_norm, rng));
+  smoother.initialize(x0, sigma, observe_with_outliers(x0, landmarks, extr, sigma_norm, outlier_modulus, rng));
 
   SmootherRun run;
   for (int k = 1; k <= frames; ++k) {
@@ -60,7 +74,7 @@ SmootherRun run_smoother(int frames, int window, std::uint32_t seed) {
     const NavState& last = smoother.newest();
     Preintegration preint(last.bias_gyro_rad_s, last.bias_accel_m_s2, noise);
     integrate_samples(imu, last.t_ns, truth.t_ns, preint);
-    smoother.add_frame(preint, test::observe(truth, landmarks, extr, sigma_norm, rng));
+    smoother.add_frame(preint, observe_with_outliers(truth, landmarks, extr, sigma_norm, outlier_modulus, rng));
     const NavState& est = smoother.newest();
     run.position_error_m.push_back((est.p_W_I - truth.p_W_I).norm());
     run.rotation_error_deg.push_back(so3::log(Mat3(est.R_W_I.transpose() * truth.R_W_I)).norm() * 180 / M_PI);
@@ -101,6 +115,21 @@ TEST(Smoother, TracksSyntheticMotionThroughMarginalization) {
   for (int k = 0; k < 3; ++k) {
     EXPECT_LT(std::abs(err[k]), 4 * std::sqrt(run.newest_covariance(kPos + k, kPos + k)) + 1e-3);
   }
+}
+
+TEST(Smoother, RejectsGrossOutliersWithTheChiSquareTest) {
+  auto max_error = [](const SmootherRun& run) {
+    return *std::max_element(run.position_error_m.begin(), run.position_error_m.end());
+  };
+  // One track in ten is an outlier; a huge quantile switches the chi-square test off.
+  const SmootherRun with_test = run_smoother(20, 10, 33, 10);
+  const SmootherRun without_test = run_smoother(20, 10, 33, 10, 1e6);
+  std::printf("outliers: chi-square test on: rejected %d landmarks, max position error %.4f m; off: %.4f m\n",
+              with_test.stats.rejected_landmarks, max_error(with_test), max_error(without_test));
+  EXPECT_EQ(without_test.stats.rejected_landmarks, 0);
+  EXPECT_GT(with_test.stats.rejected_landmarks, 5);
+  EXPECT_LT(max_error(with_test), 0.03);
+  EXPECT_GT(max_error(without_test), 2 * max_error(with_test));
 }
 
 TEST(Smoother, IsDeterministic) {

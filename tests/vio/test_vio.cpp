@@ -1,0 +1,110 @@
+// The Vio front door: static initialization, camera-rate states and IMU-rate poses on the analytic motion.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cstdio>
+#include <random>
+
+#include "analytic_motion.h"
+#include "common/error.h"
+#include "vio/vio.h"
+
+namespace vilslam {
+namespace {
+
+RigCalibration test_calibration() {
+  RigCalibration calib;
+  const StereoExtrinsics extr = test::test_extrinsics();
+  calib.T_I_C0 = extr.T_I_C0;
+  calib.T_I_C1 = extr.T_I_C1;
+  calib.cam0.fx = calib.cam0.fy = calib.cam1.fx = calib.cam1.fy = 450.0;
+  return calib;
+}
+
+TEST(Vio, InitializesStaticAndTracksTheMotion) {
+  test::AnalyticMotion motion;
+  motion.rest_s = 1.0;
+  const RigCalibration calib = test_calibration();
+  const StereoExtrinsics extr{calib.T_I_C0, calib.T_I_C1};
+  const std::vector<Vec3> landmarks = test::test_landmarks(400, 9);
+  std::mt19937 rng(9);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  const Vec3 bg(0.004, -0.003, 0.002), ba(0.01, -0.01, 0.02);
+  const double imu_dt = 1.0 / calib.imu.rate_hz;
+  const double sigma_norm = 0.5 / 450.0;
+
+  Vio vio(calib);
+  std::vector<VioStateOutput> states;
+  std::vector<VioImuOutput> imu_poses;
+  vio.on_state([&](const VioStateOutput& s) { states.push_back(s); });
+  vio.on_imu_pose([&](const VioImuOutput& p) { imu_poses.push_back(p); });
+
+  const int imu_per_frame = 20;  // 10 Hz frames at 200 Hz IMU
+  double max_frame_error = 0, max_imu_error = 0;
+  for (int k = 0; k <= 5 * 200; ++k) {
+    const double t = k * imu_dt;
+    ImuSample s = motion.imu(t);
+    s.gyro_rad_s += bg + Vec3(gauss(rng), gauss(rng), gauss(rng)) * calib.imu.gyro_noise_density / std::sqrt(imu_dt);
+    s.accel_m_s2 += ba + Vec3(gauss(rng), gauss(rng), gauss(rng)) * calib.imu.accel_noise_density / std::sqrt(imu_dt);
+    vio.add_imu(s);
+    if (vio.latest_imu_pose() && vio.latest_imu_pose()->t_ns == s.t_ns) {
+      max_imu_error = std::max(max_imu_error, (vio.latest_imu_pose()->T_W_I.translation() - motion.state(t).p_W_I).norm());
+    }
+    if (k >= 200 && k % imu_per_frame == 0) {  // frames from the end of the rest on
+      vio.add_frame(test::observe(motion.state(t), landmarks, extr, sigma_norm, rng));
+      ASSERT_TRUE(vio.latest_state().has_value());
+      const NavState& est = vio.latest_state()->state;
+      EXPECT_EQ(est.t_ns, s.t_ns);
+      max_frame_error = std::max(max_frame_error, (est.p_W_I - motion.state(t).p_W_I).norm());
+    }
+  }
+  std::printf("static init + 4 s of motion: %zu states, %zu IMU-rate poses, max error %.4f m (frames), %.4f m (IMU rate)\n",
+              states.size(), imu_poses.size(), max_frame_error, max_imu_error);
+  EXPECT_EQ(states.size(), 41u);
+  EXPECT_EQ(imu_poses.size(), 800u);  // every sample after the first frame
+  EXPECT_LT(max_frame_error, 0.08);
+  EXPECT_LT(max_imu_error, 0.08);
+  // The gyro bias comes from the static average and is refined; the covariance is a covariance.
+  EXPECT_LT((states.back().state.bias_gyro_rad_s - bg).norm(), 2e-3);
+  const Eigen::SelfAdjointEigenSolver<Mat15> eig(states.back().covariance);
+  EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
+}
+
+TEST(Vio, RejectsOutOfOrderInput) {
+  Vio vio(test_calibration());
+  ImuSample s;
+  s.t_ns = 1000;
+  s.accel_m_s2 = Vec3(0, 0, 9.81);
+  vio.add_imu(s);
+  EXPECT_THROW(vio.add_imu(s), InputError);
+  s.t_ns = 2000;
+  s.gyro_rad_s.x() = std::nan("");
+  EXPECT_THROW(vio.add_imu(s), InputError);
+  FrontendOutput frame;
+  frame.t_ns = 1500;
+  vio.add_frame(frame);
+  EXPECT_TRUE(vio.initialized());
+  EXPECT_THROW(vio.add_frame(frame), InputError);
+}
+
+TEST(Vio, StaticInitializationLevelsGravity) {
+  std::vector<ImuSample> samples;
+  const Mat3 R_W_I = so3::exp(Vec3(0.2, -0.1, 0.7));
+  for (int k = 0; k < 200; ++k) {
+    ImuSample s;
+    s.t_ns = k * 5'000'000;
+    s.gyro_rad_s = Vec3(0.01, -0.02, 0.005);
+    s.accel_m_s2 = R_W_I.transpose() * Vec3(0, 0, 9.81);
+    samples.push_back(s);
+  }
+  const Initialization init = static_initialization(samples, samples.back().t_ns, InitializerConfig{});
+  EXPECT_TRUE(init.is_static);
+  EXPECT_EQ(init.samples, 200);
+  // Gravity direction matches, yaw is zero, gyro bias is the mean rate.
+  EXPECT_LT((init.state.R_W_I.transpose() * Vec3::UnitZ() - R_W_I.transpose() * Vec3::UnitZ()).norm(), 1e-9);
+  EXPECT_NEAR(std::atan2(init.state.R_W_I(1, 0), init.state.R_W_I(0, 0)), 0.0, 1e-9);
+  EXPECT_LT((init.state.bias_gyro_rad_s - Vec3(0.01, -0.02, 0.005)).norm(), 1e-12);
+}
+
+}  // namespace
+}  // namespace vilslam
