@@ -50,7 +50,7 @@ void build_outdoor(SceneBuilder& builder, double length_m) {
   const Palette p = make_palette(builder);
   // Streets: a rectilinear loop around blocks, scaled to the length, on the plane z = slope * x.
   const double aspect = rng.uniform(1.2, 1.6);
-  Polygon2 loop = rectilinear_loop(rng, aspect, 1.0, 1, 0.3);
+  Polygon2 loop = rectilinear_loop(rng, aspect, 1.0, length_m >= 400 ? 1 : 0, 0.3);  // notch >= 2 turn radii
   scale_to_length(&loop, kTurnRadius, length_m);
   const double slope = rng.uniform(0.02, 0.04);
   auto ground_z = [&](double x) { return slope * x; };

@@ -59,9 +59,11 @@ void build_room(SceneBuilder& builder, double length_m) {
   std::vector<int> clutter;
   for (int k = 0; k < 4; ++k) clutter.push_back(builder.material(K::kClutter, rng.uniform(0.3f, 0.7f), 0.4f));
 
-  // One lap of about length_m, as large as the room allows.
-  const double nominal = M_PI * (3 * 4.2 - std::sqrt((3 * 1.8 + 2.4) * (1.8 + 3 * 2.4)));  // Ramanujan's perimeter
-  const double scale = std::min(length_m / nominal, 1.2);
+  // One lap of length_m: the ellipse is scaled until its length (height changes included) matches.
+  double scale = 1.0;
+  for (int k = 0; k < 4; ++k) {
+    scale = std::min(scale * length_m / polyline_length(elliptic_loop(1.8 * scale, 2.4 * scale, 0.25)), 1.25);
+  }
   builder.set_route(elliptic_loop(1.8 * scale, 2.4 * scale, 0.25));
 
   const Enclosure walls = add_enclosure(builder, kRoom, Walls{floor, ceiling, wall});
