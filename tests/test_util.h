@@ -22,10 +22,11 @@ inline std::string shared_data(const std::string& relative) {
   const std::string var = ::vilslam::test::shared_data(relative);                         \
   if (var.empty()) GTEST_SKIP() << "shared data absent: " << VILSLAM_SHARED_DATA << "/" << relative
 
-// A fresh empty folder under the build tree's temp dir, unique per test.
+// A fresh empty folder under the temp dir, unique per test and per process (test binaries of several
+// worktrees may run at the same time).
 inline std::filesystem::path temp_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  std::filesystem::path dir = std::filesystem::temp_directory_path() / "vilslam_tests" /
+  std::filesystem::path dir = std::filesystem::temp_directory_path() / "vilslam_tests" / std::to_string(::getpid()) /
                               (std::string(info->test_suite_name()) + "." + info->name());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);

@@ -1,6 +1,9 @@
 #include "io/csv.h"
 
+#include <cctype>
 #include <charconv>
+#include <cstdlib>
+#include <limits>
 #include <cmath>
 #include <fstream>
 
@@ -100,20 +103,48 @@ double Table::number(const TableRow& row, std::size_t col) const {
   return v;
 }
 
+// Decimal seconds ("1403715274.30214", "1.403715529112143517e+09", "-0.5") to ns without a double, so that
+// 19-digit timestamps survive exactly: the digits are shifted by the exponent and rounded half up at the ns digit.
 TimeNs Table::seconds_as_ns(const TableRow& row, std::size_t col) const {
   const std::string& s = text(row, col);
-  const auto dot = s.find('.');
-  const std::string whole = s.substr(0, dot);
-  const std::string frac = dot == std::string::npos ? std::string() : s.substr(dot + 1);
-  const bool plain = !whole.empty() && whole.find_first_not_of("0123456789") == std::string::npos &&
-                     frac.find_first_not_of("0123456789") == std::string::npos && whole.size() < 11;
-  if (!plain) return s_to_ns(number(row, col));
-  // Exact decimal: whole seconds plus the first nine fraction digits, rounded on the tenth.
-  TimeNs t = std::stoll(whole) * kNsPerSecond;
-  std::string digits = frac.substr(0, 10);
-  digits.resize(10, '0');
-  const TimeNs frac_tenth_ns = std::stoll(digits);
-  return t + (frac_tenth_ns + 5) / 10;
+  const auto bad = [&](const char* problem) {
+    return InputError(path_, "field " + std::to_string(col + 1) + " " + problem + ": '" + s + "'", row.line);
+  };
+  std::size_t i = 0;
+  const bool negative = s[0] == '-';
+  if (s[0] == '-' || s[0] == '+') ++i;
+  std::string digits;
+  long int_digits = 0;
+  bool seen_dot = false;
+  for (; i < s.size() && (std::isdigit(static_cast<unsigned char>(s[i])) || s[i] == '.'); ++i) {
+    if (s[i] == '.') {
+      if (seen_dot) throw bad("is not a time in seconds");
+      seen_dot = true;
+    } else {
+      digits.push_back(s[i]);
+      if (!seen_dot) ++int_digits;
+    }
+  }
+  if (digits.empty()) throw bad("is not a time in seconds");
+  if (i < s.size()) {
+    int exponent = 0;
+    const char* begin = s.data() + i + 1;
+    if (begin < s.data() + s.size() && *begin == '+') ++begin;
+    const auto [end, ec] = std::from_chars(begin, s.data() + s.size(), exponent);
+    if ((s[i] != 'e' && s[i] != 'E') || ec != std::errc() || end != s.data() + s.size() || std::abs(exponent) > 30) {
+      throw bad("is not a time in seconds");
+    }
+    int_digits += exponent;
+  }
+  const long ns_digits = int_digits + 9;  // digits of the result before the rounding position
+  TimeNs ns = 0;
+  for (long k = 0; k < ns_digits; ++k) {
+    const int d = k < static_cast<long>(digits.size()) ? digits[k] - '0' : 0;
+    if (ns > (std::numeric_limits<TimeNs>::max() - d) / 10) throw bad("is out of the time range");
+    ns = ns * 10 + d;
+  }
+  if (ns_digits >= 0 && ns_digits < static_cast<long>(digits.size()) && digits[ns_digits] >= '5') ++ns;
+  return negative ? -ns : ns;
 }
 
 void Table::require_increasing(const std::vector<TimeNs>& times) const {

@@ -25,7 +25,7 @@ class Table {
 
   // Field parsers: numbers must use the whole field and be finite.
   TimeNs time_ns(const TableRow& row, std::size_t col) const;
-  // A time in seconds ("1403715274.30214"), converted to ns without floating-point rounding.
+  // A time in seconds ("1403715274.30214", "1.4037e+09"), converted to ns exactly (no floating-point rounding).
   TimeNs seconds_as_ns(const TableRow& row, std::size_t col) const;
   double number(const TableRow& row, std::size_t col) const;
   long integer(const TableRow& row, std::size_t col) const;

@@ -4,6 +4,7 @@
 // One reader class (open_indexed) serves every layout; the layouts differ only in how they index.
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/dataset.h"
@@ -47,6 +48,7 @@ std::vector<TimeNs> times_of(const std::vector<T>& items) {
 // The layouts (each throws InputError naming the file at fault).
 DatasetIndex index_euroc(const std::string& root);
 DatasetIndex index_vilslam(const std::string& root);
+DatasetIndex index_kitti(const std::string& root);
 // Detects the layout of root and indexes it, summary finalized.
 DatasetIndex index_dataset(const std::string& root);
 
@@ -59,6 +61,8 @@ std::unique_ptr<DatasetReader> open_indexed(DatasetIndex index);
 // Payload access shared by the reader and `vilslam info`.
 StereoFrame load_stereo(const StereoEntry& entry);
 LidarScan load_scan(const ScanEntry& entry, ScanEncoding encoding);
+// (width, height) of a PNG from its header; InputError unless signature, IHDR and IEND are in place.
+std::pair<int, int> png_size(const std::string& path);
 // Cheap validation of every payload (PNG signature, IHDR and IEND, image size against the calibration;
 // scan header against file size and the listed point count). deep: decode every payload instead.
 // Throws InputError naming the first bad file.

@@ -16,8 +16,10 @@ DatasetIndex index_dataset(const std::string& root) {
     index = index_vilslam(root);
   } else if (fs::is_directory(dir / "mav0")) {
     index = index_euroc(root);
+  } else if (fs::exists(dir / "calib.txt") && fs::exists(dir / "times.txt")) {
+    index = index_kitti(root);
   } else {
-    throw InputError(root, "unknown dataset layout (expected mav0/ or rig.yaml)");
+    throw InputError(root, "unknown dataset layout (expected mav0/, rig.yaml, or KITTI calib.txt and times.txt)");
   }
   finalize_summary(index);
   return index;

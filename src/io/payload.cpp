@@ -24,9 +24,26 @@ std::uint32_t big_endian_u32(const unsigned char* p) {
   return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | std::uint32_t{p[3]};
 }
 
+void check_size(const std::string& path, int width, int height, const CameraIntrinsics& cam) {
+  if (cam.width_px > 0 && (width != cam.width_px || height != cam.height_px)) {
+    throw InputError(path, "image is " + std::to_string(width) + "x" + std::to_string(height) +
+                               ", the calibration says " + std::to_string(cam.width_px) + "x" +
+                               std::to_string(cam.height_px));
+  }
+}
+
+void check_point_count(const ScanEntry& entry, std::size_t num_points) {
+  if (entry.num_points >= 0 && static_cast<std::size_t>(entry.num_points) != num_points) {
+    throw InputError(entry.path, "has " + std::to_string(num_points) + " points, the index lists " +
+                                     std::to_string(entry.num_points));
+  }
+}
+
+}  // namespace
+
 // PNG structure (ISO/IEC 15948): 8-byte signature, IHDR first (length 13), IEND last (12 bytes).
 // Returns (width, height).
-std::pair<int, int> check_png(const std::string& path) {
+std::pair<int, int> png_size(const std::string& path) {
   static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   static const unsigned char kIend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
   std::ifstream f(path, std::ios::binary);
@@ -48,23 +65,6 @@ std::pair<int, int> check_png(const std::string& path) {
   if (!f || !std::equal(kIend, kIend + 12, tail.begin())) throw InputError(path, "corrupt PNG: truncated (no IEND chunk)");
   return {static_cast<int>(width), static_cast<int>(height)};
 }
-
-void check_size(const std::string& path, int width, int height, const CameraIntrinsics& cam) {
-  if (cam.width_px > 0 && (width != cam.width_px || height != cam.height_px)) {
-    throw InputError(path, "image is " + std::to_string(width) + "x" + std::to_string(height) +
-                               ", the calibration says " + std::to_string(cam.width_px) + "x" +
-                               std::to_string(cam.height_px));
-  }
-}
-
-void check_point_count(const ScanEntry& entry, std::size_t num_points) {
-  if (entry.num_points >= 0 && static_cast<std::size_t>(entry.num_points) != num_points) {
-    throw InputError(entry.path, "has " + std::to_string(num_points) + " points, the index lists " +
-                                     std::to_string(entry.num_points));
-  }
-}
-
-}  // namespace
 
 StereoFrame load_stereo(const StereoEntry& entry) {
   StereoFrame frame;
@@ -89,9 +89,9 @@ void check_payloads(const DatasetIndex& index, bool deep) {
       check_size(e.left_path, f.left.cols, f.left.rows, calib.cam0);
       check_size(e.right_path, f.right.cols, f.right.rows, calib.cam1);
     } else {
-      const auto [w0, h0] = check_png(e.left_path);
+      const auto [w0, h0] = png_size(e.left_path);
       check_size(e.left_path, w0, h0, calib.cam0);
-      const auto [w1, h1] = check_png(e.right_path);
+      const auto [w1, h1] = png_size(e.right_path);
       check_size(e.right_path, w1, h1, calib.cam1);
     }
   }

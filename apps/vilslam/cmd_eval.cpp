@@ -1,0 +1,106 @@
+// `vilslam eval --est FILE --gt FILE ...`: APE, RPE, the KITTI segment metric and the final drift of an
+// estimated trajectory against ground truth (docs/evaluation.md).
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "common/error.h"
+#include "common/json_writer.h"
+#include "eval/eval_json.h"
+#include "eval/trajectory_eval.h"
+#include "io/trajectory_io.h"
+#include "vilslam/command.h"
+
+namespace {
+
+using namespace vilslam;
+
+struct Options {
+  std::string est_path, gt_path, json_path;
+  std::string format, est_format, gt_format;
+  std::string times, est_times, gt_times;
+  std::string align = "se3";
+  std::size_t align_first_n = 0;
+  double delta = 1.0;
+  std::string delta_unit = "frames";
+  double max_diff_s = 0.01;
+};
+
+Trajectory load(const std::string& path, const std::string& format, const std::string& fallback_format,
+                const std::string& times) {
+  const std::string name = !format.empty() ? format : fallback_format;
+  const TrajectoryFormat f = name.empty() ? detect_trajectory_format(path) : parse_trajectory_format(name);
+  return read_trajectory(path, f, times);
+}
+
+void print_stats_row(const char* label, const eval::ErrorStats& s) {
+  std::printf("%-16s %10.5f %10.5f %10.5f %10.5f %10.5f %10.5f %7zu\n", label, s.rmse, s.mean, s.median, s.std, s.min,
+              s.max, s.count);
+}
+
+void print(const eval::TrajectoryEvalReport& r, const Options& o) {
+  std::printf("matched poses: %zu\nalignment: %s (scale %.6f, first %s poses)\n", r.matched_poses,
+              eval::align_mode_name(r.alignment.mode).c_str(), r.alignment.scale,
+              o.align_first_n == 0 ? "all" : std::to_string(o.align_first_n).c_str());
+  std::printf("path length: %.3f m\nFDE: %.4f %% (%.4f m)   start-aligned vs gt: %.4f %% (%.4f m)\n", r.path_length_m,
+              r.fde.percent, r.fde.drift_m, r.fde_start_aligned.percent, r.fde_start_aligned.drift_m);
+  if (r.kitti.segments > 0) {
+    std::printf("KITTI: t_err %.4f %%  r_err %.6f deg/m  (%zu segments)\n", r.kitti.t_err_percent,
+                r.kitti.r_err_deg_per_m, r.kitti.segments);
+  } else {
+    std::printf("KITTI: no segment (ground-truth path shorter than 100 m)\n");
+  }
+  std::printf("RPE: delta %g %s, consecutive pairs\n", o.delta, o.delta_unit.c_str());
+  std::printf("%-16s %10s %10s %10s %10s %10s %10s %7s\n", "metric", "rmse", "mean", "median", "std", "min", "max", "n");
+  print_stats_row("APE [m]", r.ape.trans);
+  print_stats_row("APE rot [deg]", r.ape.rot);
+  print_stats_row("RPE [m]", r.rpe.trans);
+  print_stats_row("RPE rot [deg]", r.rpe.rot);
+}
+
+vilslam::cli::Command reg("eval", "Trajectory errors (APE, RPE, KITTI, final drift) against ground truth",
+                          [](CLI::App& app) {
+  auto o = std::make_shared<Options>();
+  const auto formats = CLI::IsMember({"tum", "kitti", "euroc"});
+  app.add_option("--est", o->est_path, "Estimated trajectory")->required();
+  app.add_option("--gt", o->gt_path, "Ground-truth trajectory")->required();
+  app.add_option("--format", o->format, "Format of both files (default: detected)")->check(formats);
+  app.add_option("--est-format", o->est_format, "Format of the estimate")->check(formats);
+  app.add_option("--gt-format", o->gt_format, "Format of the ground truth")->check(formats);
+  app.add_option("--times", o->times, "KITTI times file for both (default: pose index in seconds)");
+  app.add_option("--est-times", o->est_times, "KITTI times file of the estimate");
+  app.add_option("--gt-times", o->gt_times, "KITTI times file of the ground truth");
+  app.add_option("--align", o->align, "Alignment before APE")
+      ->check(CLI::IsMember({"se3", "sim3", "posyaw", "none"}))
+      ->capture_default_str();
+  app.add_option("--align-first", o->align_first_n, "Align on the first N matched poses (0 = all)")->capture_default_str();
+  app.add_option("--delta", o->delta, "RPE pose-pair distance")->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_option("--delta-unit", o->delta_unit, "RPE delta unit")
+      ->check(CLI::IsMember({"m", "frames"}))
+      ->capture_default_str();
+  app.add_option("--max-diff", o->max_diff_s, "Largest time difference of associated poses, s")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--json", o->json_path, "Also write the results as JSON to this file");
+  return [o]() {
+    const Trajectory est = load(o->est_path, o->est_format, o->format, o->est_times.empty() ? o->times : o->est_times);
+    const Trajectory gt = load(o->gt_path, o->gt_format, o->format, o->gt_times.empty() ? o->times : o->gt_times);
+    eval::TrajectoryEvalConfig config;
+    config.align = eval::parse_align_mode(o->align);
+    config.align_first_n = o->align_first_n;
+    config.rpe = {o->delta, o->delta_unit == "m" ? eval::DeltaUnit::kMeters : eval::DeltaUnit::kFrames};
+    config.max_diff_ns = s_to_ns(o->max_diff_s);
+    eval::TrajectoryEvalReport report;
+    try {
+      report = eval::evaluate_trajectory(est, gt, config);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(o->est_path, std::string("cannot evaluate against ") + o->gt_path + ": " + e.what());
+    }
+    print(report, *o);
+    if (!o->json_path.empty()) write_file_atomic(o->json_path, eval::trajectory_report_json(report, config));
+    return 0;
+  };
+});
+
+}  // namespace

@@ -1,0 +1,38 @@
+#include "eval/map_error.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "eval/point_index.h"
+#include "eval/stats.h"
+
+namespace vilslam::eval {
+
+MapError compute_map_error(const PointCloud& map, const PointCloud& model, const MapErrorConfig& config) {
+  if (map.points.empty() || model.points.empty()) throw std::invalid_argument("map error needs non-empty clouds");
+  const PointIndex index(model.points);
+  MapError out;
+  if (config.align) {
+    const bool to_plane = config.icp.mode == IcpMode::kPointToPlane;
+    const auto normals = to_plane ? estimate_normals(index, config.icp.normal_neighbours) : std::vector<Eigen::Vector3f>{};
+    out.icp = align_icp(map.points, index, normals, config.icp);
+  }
+  out.per_point_m.resize(map.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, map.size(), 1024), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const Eigen::Vector3f p = (out.icp.T_model_map * map.points[i].cast<double>()).cast<float>();
+      out.per_point_m[i] = std::sqrt(index.nearest(p).dist_sq);
+    }
+  });
+  const std::vector<double> errors(out.per_point_m.begin(), out.per_point_m.end());
+  const ErrorStats stats = compute_stats(errors);
+  out.mean_m = stats.mean;
+  out.median_m = stats.median;
+  out.p95_m = percentile(errors, 95.0);
+  return out;
+}
+
+}  // namespace vilslam::eval

@@ -1,0 +1,36 @@
+#pragma once
+// The whole trajectory evaluation behind `vilslam eval`: associate, align, then APE, RPE, the KITTI
+// segment metric and the final drift.
+#include <cstddef>
+
+#include "common/types.h"
+#include "eval/alignment.h"
+#include "eval/ape_rpe.h"
+#include "eval/association.h"
+#include "eval/drift.h"
+#include "eval/kitti_metric.h"
+
+namespace vilslam::eval {
+
+struct TrajectoryEvalConfig {
+  AlignMode align = AlignMode::kSe3;
+  std::size_t align_first_n = 0;  // 0 = align on all matched poses
+  RpeConfig rpe;
+  TimeNs max_diff_ns = kDefaultMaxDiffNs;
+};
+
+struct TrajectoryEvalReport {
+  std::size_t matched_poses = 0;
+  Alignment alignment;
+  PoseErrors ape;   // on the aligned estimate
+  PoseErrors rpe;   // on the aligned estimate (invariant to se3/posyaw alignment; sim3 fixes the scale)
+  KittiMetric kitti;
+  FinalDrift fde;               // of the whole estimate (first vs last pose)
+  FinalDrift fde_start_aligned; // matched poses, start poses aligned with the ground truth
+  double path_length_m = 0;     // of the whole estimate
+};
+
+// Throws std::invalid_argument when fewer than 2 poses match or a metric cannot be formed.
+TrajectoryEvalReport evaluate_trajectory(const Trajectory& est, const Trajectory& gt, const TrajectoryEvalConfig& config);
+
+}  // namespace vilslam::eval
