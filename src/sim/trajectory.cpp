@@ -155,10 +155,15 @@ MotionState RouteMotion::state(TimeNs t_ns) const {
   const double cycles = std::max(1.0, std::round(total_length_m_ / config_.sway_wavelength_m));
   const double k_roll = 2 * kPi * cycles / total_length_m_, k_pitch = 2 * k_roll;
   const double a_roll = config_.roll_amplitude_deg * kPi / 180, a_pitch = config_.pitch_amplitude_deg * kPi / 180;
+  // Slopes tilt the rig nose-up: pitch = -atan2(z', h) with h = |c'_xy| (Ry positive is nose-down).
+  const double h = std::hypot(d1.x(), d1.y());
+  const double h_d1 = (d1.x() * d2.x() + d1.y() * d2.y()) / h;
+  const double slope = -std::atan2(d1.z(), h);
+  const double slope_rate = -(h * d2.z() - d1.z() * h_d1) / (h * h + d1.z() * d1.z()) * u_dot;
   const double roll = a_roll * std::sin(k_roll * s[0]);
-  const double pitch = a_pitch * std::sin(k_pitch * s[0]);
+  const double pitch = slope + a_pitch * std::sin(k_pitch * s[0]);
   const double roll_rate = a_roll * k_roll * std::cos(k_roll * s[0]) * s[1];
-  const double pitch_rate = a_pitch * k_pitch * std::cos(k_pitch * s[0]) * s[1];
+  const double pitch_rate = slope_rate + a_pitch * k_pitch * std::cos(k_pitch * s[0]) * s[1];
   out.T_W_I = SE3(zyx_rotation(yaw, pitch, roll), Vec3(c.value));
   out.omega_I = zyx_body_rate(roll, pitch, roll_rate, pitch_rate, yaw_rate);
   return out;

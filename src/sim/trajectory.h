@@ -44,7 +44,8 @@ struct RouteMotionConfig {
 
 // A closed route (first waypoint == last) as a periodic cubic B-spline, arc-length parametrized,
 // flown with a speed profile that is at rest at both ends (so the end pose equals the start pose).
-// Yaw follows the horizontal direction of travel; roll and pitch sway smoothly with the distance.
+// Yaw follows the horizontal direction of travel, pitch the slope; roll and pitch sway smoothly with
+// the distance.
 class RouteMotion : public BodyMotion {
  public:
   RouteMotion(const std::vector<Vec3>& route_W, const RouteMotionConfig& config);

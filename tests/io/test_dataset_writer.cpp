@@ -155,3 +155,26 @@ TEST(DatasetWriter, WithoutRigYamlTheSensorYamlsCarryTheCalibration) {
 
 }  // namespace
 }  // namespace vilslam
+
+namespace vilslam {
+namespace {
+
+TEST(DatasetSummary, GapsLongerThanOneAndAHalfPeriodsAreProblems) {
+  const auto dir = test::temp_dir();
+  const std::string root = (dir / "seq").string();
+  test::SyntheticData d = test::make_synthetic_data();
+  d.imu.erase(d.imu.begin() + 40, d.imu.begin() + 50);  // 10 samples missing: a 55 ms step at 200 Hz
+  d.stereo.erase(d.stereo.begin() + 5);                  // one frame missing: a 100 ms step at 20 Hz
+  test::write_synthetic_dataset(root, d);
+  const DatasetSummary s = open_dataset(root)->summary();
+  ASSERT_EQ(s.problems.size(), 2u);
+  EXPECT_EQ(s.problems[0], "imu0: gap of 0.055 s (11.0 periods) after t_ns=" + std::to_string(d.imu[39].t_ns));
+  EXPECT_EQ(s.problems[1], "stereo: gap of 0.100 s (2.0 periods) after t_ns=" + std::to_string(d.stereo[4].t_ns));
+  EXPECT_NEAR(s.imu_rate_hz, 200.0, 1e-9);
+  EXPECT_NEAR(s.camera_rate_hz, 20.0, 1e-9);
+  EXPECT_EQ(s.start_t_ns, d.imu.front().t_ns);
+  EXPECT_EQ(s.end_t_ns, d.imu.back().t_ns);  // the latest of all streams
+}
+
+}  // namespace
+}  // namespace vilslam

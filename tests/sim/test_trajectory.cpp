@@ -61,6 +61,16 @@ TEST(RouteMotion, LengthFollowsTheRoute) {
 TEST(RouteMotion, DerivativesMatchFiniteDifferences) {
   const RouteMotion motion(rectangle_route(), RouteMotionConfig{});
   expect_consistent_derivatives(motion, 37 * kMs, 1e-4, 1e-3, 1e-4);
+  // A gentle slope (the outdoor route climbs): pitch follows it.
+  std::vector<Vec3> hill = rectangle_route();
+  hill[1].z() = 2.5;
+  hill[2].z() = 2.5;
+  const RouteMotion climbing(hill, RouteMotionConfig{});
+  expect_consistent_derivatives(climbing, 37 * kMs, 1e-4, 1e-3, 1e-4);
+  const SE3 T = climbing.pose(climbing.start_ns() + s_to_ns(6.0));
+  const Vec3 forward_W = T.rotation().col(0), v_W = climbing.state(climbing.start_ns() + s_to_ns(6.0)).v_W;
+  EXPECT_GT(v_W.z(), 0.02);
+  EXPECT_NEAR(std::asin(forward_W.z()), std::asin(v_W.z() / v_W.norm()), 1.2 * M_PI / 180);  // up to the sway
 }
 
 // Largest change of acceleration between samples h apart, and the largest acceleration.

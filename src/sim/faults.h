@@ -1,0 +1,27 @@
+#pragma once
+// Sensor faults injected by the simulator: blackouts, dropouts, gaps and clock offsets. They are not
+// recorded in the dataset's calibration: the system under test has to cope with them.
+#include <vector>
+
+#include "common/time.h"
+
+namespace vilslam::sim {
+
+// [begin_s, end_s) in seconds since the start of the sequence.
+struct FaultInterval {
+  double begin_s = 0;
+  double end_s = 0;
+};
+
+struct FaultConfig {
+  std::vector<FaultInterval> camera_blackouts;  // images are black (lens covered, lights out)
+  std::vector<FaultInterval> lidar_dropouts;    // sweeps starting in the interval are missing
+  std::vector<FaultInterval> imu_gaps;          // samples in the interval are missing
+  double camera_time_offset_s = 0;              // stamp = true capture time + offset
+  double lidar_time_offset_s = 0;
+};
+
+// True when t_ns (relative to the sequence start) falls in one of the intervals.
+bool in_fault(const std::vector<FaultInterval>& intervals, TimeNs since_start_ns);
+
+}  // namespace vilslam::sim

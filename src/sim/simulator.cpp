@@ -1,0 +1,239 @@
+#include "sim/simulator.h"
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include "common/error.h"
+#include <spdlog/spdlog.h>
+#include "io/dataset_writer.h"
+#include "io/euroc_tables.h"
+#include "io/trajectory_io.h"
+#include "sim/kitti_writer.h"
+#include "sim/lidar_sim.h"
+
+namespace vilslam::sim {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kPi = 3.14159265358979323846;
+
+// SplitMix64 finalizer: independent, reproducible seeds for every frame, sweep and stream.
+std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t stream, std::uint64_t index) {
+  std::uint64_t z = seed ^ (stream * 0x9E3779B97F4A7C15ULL) ^ (index * 0xBF58476D1CE4E5B9ULL);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
+struct Scene {
+  World world;
+  std::unique_ptr<BodyMotion> motion;
+};
+
+// The world and the motion through it: a recorded ground truth, or the world's closed route flown at
+// the configured speed (or at the speed that makes it last request.duration_s).
+Scene make_scene(const SimConfig& config, const SimulateRequest& request) {
+  RouteMotionConfig motion_config = route_motion_config(config, request.scenario);
+  double length_m = request.length_m;
+  if (request.duration_s > 0 && length_m <= 0)
+    length_m = motion_config.cruise_speed_m_s *
+               (request.duration_s - motion_config.rest_start_s - motion_config.rest_end_s - motion_config.ramp_s);
+  Scene scene{World::generate(request.scenario, request.seed, std::max(0.0, length_m)), nullptr};
+  if (!request.trajectory_path.empty()) {
+    const Trajectory poses = read_trajectory(request.trajectory_path, TrajectoryFormat::kTum);
+    if (poses.size() < 2) throw InputError(request.trajectory_path, "needs at least 2 poses");
+    scene.motion = std::make_unique<PoseSplineMotion>(poses, config.pose_spline);
+    return scene;
+  }
+  if (request.duration_s > 0) {
+    const RouteMotion probe(scene.world.route_W(), motion_config);
+    motion_config.cruise_speed_m_s =
+        RouteMotion::cruise_speed_for_duration(probe.length_m(), request.duration_s, motion_config);
+  }
+  scene.motion = std::make_unique<RouteMotion>(scene.world.route_W(), motion_config);
+  return scene;
+}
+
+struct ImuStream {
+  std::vector<ImuSample> samples;
+  std::vector<GroundTruthState> groundtruth;
+  TimeNs t0_ns = 0, t1_ns = 0;  // the sequence's time span
+};
+
+// The IMU and the ground truth at its timestamps: simulated, or a real stream restricted to the motion.
+ImuStream make_imu(const SimConfig& config, const SimulateRequest& request, const BodyMotion& motion) {
+  ImuStream out;
+  TimeNs t1 = motion.end_ns();
+  if (request.preview) t1 = std::min(t1, motion.start_ns() + s_to_ns(config.preview_duration_s));
+  if (request.imu_path.empty()) {
+    ImuSimConfig imu = config.imu;
+    imu.seed = mix_seed(request.seed, 3, 0);
+    ImuSimulation sim = simulate_imu(motion, imu, motion.start_ns(), t1);
+    out.samples = std::move(sim.samples);
+    out.groundtruth = std::move(sim.groundtruth);
+  } else {
+    std::vector<TimeNs> stamps;
+    for (const ImuSample& s : read_imu_csv(request.imu_path)) {
+      if (s.t_ns < motion.start_ns() || s.t_ns > t1) continue;
+      out.samples.push_back(s);
+      stamps.push_back(s.t_ns);
+    }
+    if (stamps.size() < 2) throw InputError(request.imu_path, "no IMU samples within the trajectory's time range");
+    out.groundtruth = groundtruth_at(motion, stamps);
+  }
+  out.t0_ns = out.samples.front().t_ns;
+  out.t1_ns = out.samples.back().t_ns;
+  std::vector<ImuSample> kept;
+  for (const ImuSample& s : out.samples)
+    if (!in_fault(config.faults.imu_gaps, s.t_ns - out.t0_ns)) kept.push_back(s);
+  out.samples = std::move(kept);
+  return out;
+}
+
+// Stereo frames at the camera rate over [t0, t1], rendered in parallel batches and written in order.
+void write_frames(const SimConfig& config, const SimulateRequest& request, const Scene& scene, const RigCalibration& calib,
+                  const ImuStream& imu, DatasetWriter& writer, SequenceReport& report) {
+  const TimeNs period_ns = s_to_ns(1.0 / config.camera.rate_hz);
+  const std::size_t count = static_cast<std::size_t>((imu.t1_ns - imu.t0_ns) / period_ns) + 1;
+  const TimeNs offset_ns = s_to_ns(config.faults.camera_time_offset_s);
+  const SE3 T_I_C[2] = {calib.T_I_C0, calib.T_I_C1};
+  const CameraIntrinsics* cams[2] = {&calib.cam0, &calib.cam1};
+  double corner_sum = 0;
+  for (std::size_t first = 0; first < count; first += config.parallel_batch) {
+    const std::size_t n = std::min<std::size_t>(config.parallel_batch, count - first);
+    std::vector<StereoFrame> frames(n);
+    std::vector<int> corners(n, 0);
+    tbb::parallel_for(std::size_t(0), 2 * n, [&](std::size_t job) {
+      const std::size_t k = first + job / 2;
+      const int cam = static_cast<int>(job % 2);
+      const TimeNs t_ns = imu.t0_ns + static_cast<TimeNs>(k) * period_ns;
+      cv::Mat image;
+      if (in_fault(config.faults.camera_blackouts, t_ns - imu.t0_ns)) {
+        image = cv::Mat::zeros(cams[cam]->height_px, cams[cam]->width_px, CV_8UC1);
+      } else {
+        RenderOptions options = config.render;
+        options.noise_seed = mix_seed(request.seed, 1 + cam, k);
+        options.exposure_gain =
+            1.0 + config.exposure_variation * std::sin(2 * kPi * ns_to_s(t_ns - imu.t0_ns) / config.exposure_period_s);
+        const auto T_W_C = [&](TimeNs t) { return scene.motion->pose(t) * T_I_C[cam]; };
+        image = render_image(scene.world, *cams[cam], T_W_C, t_ns, options);
+      }
+      StereoFrame& frame = frames[job / 2];
+      if (cam == 1) {
+        frame.right = image;
+        return;
+      }
+      frame.t_ns = t_ns + offset_ns;
+      frame.left = image;
+      if (request.report) corners[job / 2] = count_corners(image);
+    });
+    for (std::size_t i = 0; i < n; ++i) {
+      writer.add_stereo(frames[i]);
+      corner_sum += corners[i];
+    }
+  }
+  report.stereo_frames = count;
+  report.mean_corners_per_frame = count > 0 ? corner_sum / count : 0;
+}
+
+// Sweeps whose whole period lies in [t0, t1], simulated in parallel batches, written in order to the
+// dataset and to the KITTI copy.
+void write_scans(const SimConfig& config, const SimulateRequest& request, const Scene& scene, const RigCalibration& calib,
+                 const ImuStream& imu, DatasetWriter& writer, KittiWriter& kitti, SequenceReport& report) {
+  const TimeNs period_ns = s_to_ns(1.0 / config.lidar.rate_hz);
+  const std::size_t count = imu.t1_ns - imu.t0_ns >= period_ns
+                                ? static_cast<std::size_t>((imu.t1_ns - imu.t0_ns - period_ns) / period_ns) + 1
+                                : 0;
+  const TimeNs offset_ns = s_to_ns(config.faults.lidar_time_offset_s);
+  const auto T_W_L = [&](TimeNs t) { return scene.motion->pose(t) * calib.T_I_L; };
+  for (std::size_t first = 0; first < count; first += config.parallel_batch) {
+    const std::size_t n = std::min<std::size_t>(config.parallel_batch, count - first);
+    std::vector<LidarScan> scans(n);
+    std::vector<char> dropped(n, 0);
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+      const TimeNs t_ns = imu.t0_ns + static_cast<TimeNs>(first + i) * period_ns;
+      dropped[i] = in_fault(config.faults.lidar_dropouts, t_ns - imu.t0_ns);
+      if (!dropped[i]) scans[i] = simulate_sweep(scene.world, config.lidar, t_ns, T_W_L, mix_seed(request.seed, 4, first + i));
+    });
+    for (std::size_t i = 0; i < n; ++i) {
+      if (dropped[i]) continue;
+      const SE3 pose = T_W_L(scans[i].t_ns);
+      scans[i].t_ns += offset_ns;
+      writer.add_lidar(scans[i]);
+      kitti.add_scan(scans[i], pose);
+      ++report.lidar_scans;
+    }
+  }
+}
+
+void remove_if_exists(const fs::path& p) {
+  std::error_code ec;
+  fs::remove_all(p, ec);
+}
+
+// Removes the temporary side outputs unless the run completed (no half-written leftovers on errors).
+struct PartialCleanup {
+  std::vector<fs::path> paths;
+  bool completed = false;
+  ~PartialCleanup() {
+    if (!completed)
+      for (const fs::path& p : paths) remove_if_exists(p);
+  }
+};
+
+// A TUM copy of the ground truth for trajectory tools, written next to the temporary KITTI folder.
+void write_tum_copy(const std::vector<GroundTruthState>& states, const fs::path& path) {
+  Trajectory poses;
+  poses.reserve(states.size());
+  for (const GroundTruthState& g : states) poses.push_back({g.t_ns, g.T_W_I});
+  write_trajectory(path.string(), poses, TrajectoryFormat::kTum);
+}
+
+}  // namespace
+
+SequenceReport simulate(const SimConfig& config, const SimulateRequest& request) {
+  const Scene scene = make_scene(config, request);
+  const RigCalibration calib = rig_calibration(config);
+  const ImuStream imu = make_imu(config, request, *scene.motion);
+
+  SequenceReport report;
+  report.scenario = scenario_name(request.scenario);
+  report.duration_s = ns_to_s(imu.t1_ns - imu.t0_ns);
+  report.length_m = path_length_m(imu.groundtruth);
+
+  DatasetWriter writer(request.out_dir, calib, request.overwrite);
+  const fs::path kitti_partial = fs::path(request.out_dir).concat(".kitti.partial");
+  const fs::path tum_partial = fs::path(request.out_dir).concat(".groundtruth.tum.partial");
+  PartialCleanup cleanup{{kitti_partial, tum_partial}};
+  remove_if_exists(kitti_partial);
+  KittiWriter kitti(kitti_partial.string(), calib);
+
+  for (const ImuSample& s : imu.samples) writer.add_imu(s);
+  for (const GroundTruthState& g : imu.groundtruth) writer.add_groundtruth(g);
+  report.imu_samples = imu.samples.size();
+  report.groundtruth_states = imu.groundtruth.size();
+  spdlog::info("simulate {}: {:.1f} m in {:.1f} s, {} IMU samples", report.scenario, report.length_m, report.duration_s,
+           report.imu_samples);
+
+  write_frames(config, request, scene, calib, imu, writer, report);
+  write_scans(config, request, scene, calib, imu, writer, kitti, report);
+  kitti.finish();
+  write_tum_copy(imu.groundtruth, tum_partial);
+  const double spacing_m = request.preview ? std::max(config.model_spacing_m, 0.2) : config.model_spacing_m;
+  writer.set_reference_model(scene.world.sample_surfaces(spacing_m));
+  writer.finish();
+
+  for (const auto& [from, to] : {std::pair{kitti_partial, fs::path(request.out_dir) / "kitti"},
+                                  std::pair{tum_partial, fs::path(request.out_dir) / "groundtruth.tum"}}) {
+    std::error_code ec;
+    fs::rename(from, to, ec);
+    if (ec) throw InputError(to.string(), "cannot move into place: " + ec.message());
+  }
+  cleanup.completed = true;
+  return report;
+}
+
+}  // namespace vilslam::sim
