@@ -1,7 +1,6 @@
 #include "lidar/features.h"
 
 #include <algorithm>
-#include <numeric>
 
 namespace vilslam::lidar {
 
@@ -30,13 +29,17 @@ RingPoints gather(const LidarScan& scan, const std::vector<std::uint32_t>& indic
   return ring;
 }
 
-// LOAM eq. (1): c = |sum_j (X_i - X_j)| / (|S| |X_i|), over the half_window neighbours on each side.
+// LOAM eq. (1): c = |sum_j (X_i - X_j)| / (|S| |X_i|), over the half_window neighbours on each side; the
+// window sums come from prefix sums (in double, so that they do not lose precision along the ring).
 void compute_smoothness(RingPoints& ring, int half_window) {
   const int n = static_cast<int>(ring.p.size());
+  std::vector<Vec3> prefix(static_cast<std::size_t>(n) + 1, Vec3::Zero());
+  for (int i = 0; i < n; ++i) prefix[i + 1] = prefix[i] + ring.p[i].cast<double>();
+  const double count = 2.0 * half_window + 1.0;
   for (int i = half_window; i < n - half_window; ++i) {
-    Eigen::Vector3f sum = Eigen::Vector3f::Zero();
-    for (int j = i - half_window; j <= i + half_window; ++j) sum += ring.p[i] - ring.p[j];
-    ring.smoothness[i] = sum.norm() / (2.0f * half_window * ring.range[i]);
+    const Vec3 window = prefix[i + half_window + 1] - prefix[i - half_window];
+    const Vec3 sum = count * ring.p[i].cast<double>() - window;
+    ring.smoothness[i] = static_cast<float>(sum.norm() / (2.0 * half_window * ring.range[i]));
     ring.usable[i] = 1;
   }
 }
@@ -79,26 +82,33 @@ void suppress_neighbours(RingPoints& ring, int i, int half_window, float max_gap
 // Takes the sharpest usable points of ring[begin, end) as edges and the flattest as surfaces (LOAM Sec. V-A).
 void select_in_sector(RingPoints& ring, int begin, int end, const FeatureConfig& config,
                       std::vector<FeaturePoint>& edges, std::vector<FeaturePoint>& surfaces) {
-  std::vector<int> order(static_cast<std::size_t>(end - begin));
-  std::iota(order.begin(), order.end(), begin);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return ring.smoothness[a] > ring.smoothness[b]; });
-  constexpr float kSuppressGapM = 0.2f;
-  const auto take = [&](int i, std::vector<FeaturePoint>& out) {
-    out.push_back({ring.p[i].cast<double>(), ring.t_offset_s[i], ring.smoothness[i]});
-    suppress_neighbours(ring, i, config.half_window, kSuppressGapM);
+  // Candidates in order of selection: sharpest edges first, flattest surfaces first (ties by position).
+  std::vector<int> edge_candidates, surface_candidates;
+  for (int i = begin; i < end; ++i) {
+    if (!ring.usable[i]) continue;
+    if (ring.smoothness[i] > config.edge_min_smoothness) edge_candidates.push_back(i);
+    if (ring.smoothness[i] < config.surface_max_smoothness) surface_candidates.push_back(i);
+  }
+  const auto sharper = [&](int a, int b) {
+    return ring.smoothness[a] > ring.smoothness[b] || (ring.smoothness[a] == ring.smoothness[b] && a < b);
   };
-  int taken = 0;
-  for (auto it = order.begin(); it != order.end() && taken < config.max_edges_per_sector; ++it) {
-    if (!ring.usable[*it] || ring.smoothness[*it] <= config.edge_min_smoothness) continue;
-    take(*it, edges);
-    ++taken;
-  }
-  taken = 0;
-  for (auto it = order.rbegin(); it != order.rend() && taken < config.max_surfaces_per_sector; ++it) {
-    if (!ring.usable[*it] || ring.smoothness[*it] >= config.surface_max_smoothness) continue;
-    take(*it, surfaces);
-    ++taken;
-  }
+  const auto flatter = [&](int a, int b) {
+    return ring.smoothness[a] < ring.smoothness[b] || (ring.smoothness[a] == ring.smoothness[b] && a < b);
+  };
+  std::sort(edge_candidates.begin(), edge_candidates.end(), sharper);
+  std::sort(surface_candidates.begin(), surface_candidates.end(), flatter);
+  constexpr float kSuppressGapM = 0.2f;
+  const auto take = [&](const std::vector<int>& candidates, int max_count, std::vector<FeaturePoint>& out) {
+    int taken = 0;
+    for (auto it = candidates.begin(); it != candidates.end() && taken < max_count; ++it) {
+      if (!ring.usable[*it]) continue;
+      out.push_back({ring.p[*it].cast<double>(), ring.t_offset_s[*it], ring.smoothness[*it]});
+      suppress_neighbours(ring, *it, config.half_window, kSuppressGapM);
+      ++taken;
+    }
+  };
+  take(edge_candidates, config.max_edges_per_sector, edges);
+  take(surface_candidates, config.max_surfaces_per_sector, surfaces);
 }
 
 }  // namespace

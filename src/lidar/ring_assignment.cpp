@@ -19,6 +19,16 @@ int ring_from_elevation(const LidarPoint& p, const RingConfig& config) {
   return ring >= 0 && ring < config.num_rings ? static_cast<int>(ring) : -1;
 }
 
+// Orders one ring by (azimuth, index). A spinning sensor delivers a ring already sorted up to one wrap-around,
+// which a rotation fixes in linear time; anything else is sorted.
+void sort_by_azimuth(std::vector<std::pair<float, std::uint32_t>>& ring) {
+  const auto descent = std::is_sorted_until(ring.begin(), ring.end());
+  if (descent != ring.end() && std::is_sorted(descent, ring.end()) && ring.back() <= ring.front()) {
+    std::rotate(ring.begin(), descent, ring.end());
+  }
+  if (!std::is_sorted(ring.begin(), ring.end())) std::stable_sort(ring.begin(), ring.end());
+}
+
 }  // namespace
 
 Rings assign_rings(const LidarScan& scan, const RingConfig& config) {
@@ -35,7 +45,7 @@ Rings assign_rings(const LidarScan& scan, const RingConfig& config) {
   }
   Rings rings(by_ring.size());
   for (std::size_t r = 0; r < by_ring.size(); ++r) {
-    std::sort(by_ring[r].begin(), by_ring[r].end());
+    sort_by_azimuth(by_ring[r]);
     rings[r].reserve(by_ring[r].size());
     for (const auto& entry : by_ring[r]) rings[r].push_back(entry.second);
   }

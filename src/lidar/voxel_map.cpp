@@ -50,16 +50,14 @@ void VoxelMap::remove_far(const Vec3& sensor_W) {
 
 std::vector<Vec3> VoxelMap::nearest(const Vec3& query_W, int k, double radius_m) const {
   const double radius = std::min(radius_m, config_.voxel_size_m);
-  const double radius_sq = radius * radius;
+  // The best k so far, nearest first. Candidates arrive in a fixed voxel and point order and only a strictly
+  // nearer one displaces another, so ties resolve by that order: the result is deterministic.
+  std::vector<std::pair<double, const Vec3*>> best;
+  best.reserve(static_cast<std::size_t>(std::max(k, 0)) + 1);
+  double worst_sq = radius * radius;
   // A ball of radius <= voxel size touches at most 2 voxels per axis.
   const Eigen::Vector3i lo = key_of(query_W - Vec3::Constant(radius));
   const Eigen::Vector3i hi = key_of(query_W + Vec3::Constant(radius));
-  struct Candidate {
-    double d_sq;
-    std::size_t order;  // position in the fixed gathering order: breaks ties deterministically
-    const Vec3* p;
-  };
-  std::vector<Candidate> found;
   for (int x = lo.x(); x <= hi.x(); ++x) {
     for (int y = lo.y(); y <= hi.y(); ++y) {
       for (int z = lo.z(); z <= hi.z(); ++z) {
@@ -67,19 +65,19 @@ std::vector<Vec3> VoxelMap::nearest(const Vec3& query_W, int k, double radius_m)
         if (it == voxels_.end()) continue;
         for (const Vec3& p : it->second) {
           const double d_sq = (p - query_W).squaredNorm();
-          if (d_sq <= radius_sq) found.push_back({d_sq, found.size(), &p});
+          if (d_sq > worst_sq || (d_sq == worst_sq && static_cast<int>(best.size()) == k)) continue;
+          auto at = std::upper_bound(best.begin(), best.end(), d_sq,
+                                     [](double d, const std::pair<double, const Vec3*>& b) { return d < b.first; });
+          best.insert(at, {d_sq, &p});
+          if (static_cast<int>(best.size()) > k) best.pop_back();
+          if (static_cast<int>(best.size()) == k) worst_sq = best.back().first;
         }
       }
     }
   }
-  const std::size_t n = std::min(found.size(), static_cast<std::size_t>(std::max(k, 0)));
-  std::partial_sort(found.begin(), found.begin() + static_cast<std::ptrdiff_t>(n), found.end(),
-                    [](const Candidate& a, const Candidate& b) {
-                      return a.d_sq < b.d_sq || (a.d_sq == b.d_sq && a.order < b.order);
-                    });
   std::vector<Vec3> result;
-  result.reserve(n);
-  for (std::size_t i = 0; i < n; ++i) result.push_back(*found[i].p);
+  result.reserve(best.size());
+  for (const auto& entry : best) result.push_back(*entry.second);
   return result;
 }
 

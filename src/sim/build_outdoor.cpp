@@ -12,7 +12,7 @@ namespace {
 constexpr double kSensorHeight = 1.5;
 constexpr double kRouteStep = 0.5;
 constexpr double kTurnRadius = 8.0;
-constexpr double kMargin = 60.0;  // ground beyond the route
+constexpr double kMargin = 40.0;  // ground beyond the route (past the buildings)
 
 struct Palette {
   int ground, road, marking, pole, lamp, trunk, car;

@@ -36,9 +36,10 @@ TEST(Dewarp, MovingScanLandsOnTheSceneFromTheEndPose) {
   EXPECT_GT(raw_max, 0.2);  // without dewarping the sweep is visibly distorted
   const LidarScan dewarped = dewarp(raw, moving_pose);
   ASSERT_EQ(dewarped.points.size(), raw.points.size());
+  const float end_offset_s = static_cast<float>(ns_to_s(raw.end_t_ns() - raw.t_ns));
   for (const LidarPoint& p : dewarped.points) {
     ASSERT_LT(distance_to_surfaces(scene, T_W_end * Vec3(p.x, p.y, p.z)), 1e-4);
-    ASSERT_FLOAT_EQ(p.t_offset_s, static_cast<float>(ns_to_s(raw.end_t_ns() - raw.t_ns)));
+    ASSERT_FLOAT_EQ(p.t_offset_s, end_offset_s);
   }
 }
 

@@ -53,6 +53,32 @@ TEST(Features, EdgesOnBoxEdgesAndSurfacesOnFaces) {
   }
 }
 
+TEST(Features, RejectsSurfacesNearlyParallelToTheBeam) {
+  // In a 4 m wide corridor the side walls are swept at ever more grazing angles down its length.
+  const test::Scene corridor{{Vec3(-500, -2, -1.5), Vec3(500, 2, 2)}, {}};
+  RingConfig rings;
+  rings.max_range_m = 60.0;
+  const LidarScan scan = static_sweep(corridor, SE3());
+  // Angle between the beam and the side wall's normal (y axis), seen from above, in degrees.
+  const auto grazing_deg = [](const Vec3& p) { return std::acos(std::abs(p.y()) / p.head<2>().norm()) * 180 / M_PI; };
+  const auto on_side_wall = [](const Vec3& p) { return std::abs(std::abs(p.y()) - 2.0) < 1e-3; };
+  int steep = 0;
+  for (const LidarPoint& q : scan.points) {
+    const Vec3 p(q.x, q.y, q.z);
+    steep += on_side_wall(p) && p.norm() < rings.max_range_m && grazing_deg(p) > 85.0;
+  }
+  ASSERT_GT(steep, 100);  // the sweep does contain such points
+  const FeatureScan f = extract_features(scan, rings, FeatureConfig{});
+  int on_walls = 0;
+  for (const FeaturePoint& s : f.surfaces) {
+    if (!on_side_wall(s.p_L)) continue;
+    ++on_walls;
+    // Neighbour gaps exceed 2 % of the range beyond about 80 deg for a 0.2 deg azimuth step.
+    EXPECT_LT(grazing_deg(s.p_L), 81.0) << s.p_L.transpose();
+  }
+  EXPECT_GT(on_walls, 50);
+}
+
 TEST(Features, CountsFollowTheConfig) {
   const LidarScan scan = static_sweep(test::box_room(), SE3());
   FeatureConfig config;
