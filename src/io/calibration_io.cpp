@@ -11,22 +11,6 @@ namespace {
 
 std::size_t coeff_count(DistortionModel model) { return model == DistortionModel::kNone ? 0 : 4; }
 
-// Fields shared by Kalibr camchains and the rig YAML: resolution, intrinsics, distortion.
-CameraIntrinsics read_pinhole(const YAML::Node& node, const std::string& file, const std::string& coeffs_key) {
-  CameraIntrinsics c;
-  const std::vector<double> res = yaml_doubles(node, "resolution", file, 2);
-  c.width_px = static_cast<int>(res[0]);
-  c.height_px = static_cast<int>(res[1]);
-  const std::vector<double> k = yaml_doubles(node, "intrinsics", file, 4);
-  c.fx = k[0];
-  c.fy = k[1];
-  c.cx = k[2];
-  c.cy = k[3];
-  c.distortion = parse_distortion_model(yaml_string(node, "distortion_model", file), file);
-  c.distortion_coeffs = yaml_doubles(node, coeffs_key, file, coeff_count(c.distortion));
-  return c;
-}
-
 YAML::Node section(const YAML::Node& root, const std::string& key, const std::string& file) {
   if (!root.IsMap() || !root[key] || !root[key].IsMap()) throw InputError(file, "missing section '" + key + "'");
   return root[key];
@@ -41,7 +25,7 @@ std::string transform_text(const SE3& T) {
 
 std::string camera_text(const std::string& name, const CameraIntrinsics& c, const SE3& T_I_C) {
   std::ostringstream out;
-  out << name << ":\n  resolution: [" << c.width_px << ", " << c.height_px << "]\n"
+  out << name << ":\n  camera_model: pinhole\n  resolution: [" << c.width_px << ", " << c.height_px << "]\n"
       << "  intrinsics: " << yaml_list({c.fx, c.fy, c.cx, c.cy}) << "\n"
       << "  distortion_model: " << distortion_model_name(c.distortion) << "\n"
       << "  distortion_coeffs: " << yaml_list(c.distortion_coeffs) << "\n"
@@ -51,6 +35,23 @@ std::string camera_text(const std::string& name, const CameraIntrinsics& c, cons
 }
 
 }  // namespace
+
+CameraIntrinsics read_pinhole(const YAML::Node& node, const std::string& file, const std::string& coeffs_key) {
+  const std::string model = yaml_string(node, "camera_model", file);
+  if (model != "pinhole") throw InputError(file, "camera_model '" + model + "' is not supported (pinhole only)");
+  CameraIntrinsics c;
+  const std::vector<double> res = yaml_doubles(node, "resolution", file, 2);
+  c.width_px = static_cast<int>(res[0]);
+  c.height_px = static_cast<int>(res[1]);
+  const std::vector<double> k = yaml_doubles(node, "intrinsics", file, 4);
+  c.fx = k[0];
+  c.fy = k[1];
+  c.cx = k[2];
+  c.cy = k[3];
+  c.distortion = parse_distortion_model(yaml_string(node, "distortion_model", file), file);
+  c.distortion_coeffs = yaml_doubles(node, coeffs_key, file, coeff_count(c.distortion));
+  return c;
+}
 
 DistortionModel parse_distortion_model(const std::string& name, const std::string& file) {
   if (name == "radtan" || name == "radial-tangential" || name == "plumb_bob") return DistortionModel::kRadTan;
@@ -76,8 +77,6 @@ RigCalibration read_kalibr_camchain(const std::string& path, const std::string& 
   for (int i = 0; i < 2; ++i) {
     const std::string name = "cam" + std::to_string(i);
     const YAML::Node node = section(root, name, path);
-    const std::string model = yaml_string(node, "camera_model", path);
-    if (model != "pinhole") throw InputError(path, name + ": camera_model '" + model + "' is not supported");
     *cams[i] = read_pinhole(node, path, "distortion_coeffs");
     if (node["T_cam_imu"]) {
       *T_I_C[i] = yaml_transform(node, "T_cam_imu", path).inverse();

@@ -1,5 +1,7 @@
 #pragma once
 // Calibration files: Kalibr camchain (and imu) YAML in, the project's rig YAML (docs/formats.md) in and out.
+#include <yaml-cpp/yaml.h>
+
 #include <string>
 
 #include "common/calibration.h"
@@ -10,6 +12,11 @@ namespace vilslam {
 DistortionModel parse_distortion_model(const std::string& name, const std::string& file);
 // The project's name of a model: "radtan", "equidistant" or "none".
 std::string distortion_model_name(DistortionModel model);
+
+// The pinhole fields shared by Kalibr, EuRoC and rig files: resolution [w, h], intrinsics [fx, fy, cx, cy],
+// distortion_model and the coefficient list named coeffs_key (EuRoC: distortion_coefficients).
+// camera_model must be pinhole. rate_hz is left 0.
+CameraIntrinsics read_pinhole(const YAML::Node& node, const std::string& file, const std::string& coeffs_key);
 
 // Kalibr camchain(-imucam) YAML: cam0 and cam1 (pinhole, radtan|equidistant). T_I_C comes from
 // T_cam_imu when present; otherwise cam0 is taken as I and cam1 placed by T_cn_cnm1.

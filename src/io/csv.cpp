@@ -71,40 +71,30 @@ const std::string& Table::text(const TableRow& row, std::size_t col) const {
 }
 
 TimeNs Table::time_ns(const TableRow& row, std::size_t col) const {
-  const std::string& s = text(row, col);
-  TimeNs t = 0;
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), t);
-  if (ec != std::errc() || end != s.data() + s.size()) {
-    throw InputError(path_, "field " + std::to_string(col + 1) + " is not an integer timestamp: '" + s + "'", row.line);
-  }
-  return t;
+  return parse<TimeNs>(row, col, "an integer timestamp");
 }
 
-long Table::integer(const TableRow& row, std::size_t col) const {
-  const std::string& s = text(row, col);
-  long v = 0;
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (ec != std::errc() || end != s.data() + s.size()) {
-    throw InputError(path_, "field " + std::to_string(col + 1) + " is not an integer: '" + s + "'", row.line);
-  }
-  return v;
-}
+long Table::integer(const TableRow& row, std::size_t col) const { return parse<long>(row, col, "an integer"); }
 
 double Table::number(const TableRow& row, std::size_t col) const {
-  const std::string& s = text(row, col);
-  double v = 0;
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (ec != std::errc() || end != s.data() + s.size()) {
-    throw InputError(path_, "field " + std::to_string(col + 1) + " is not a number: '" + s + "'", row.line);
-  }
+  const double v = parse<double>(row, col, "a number");
   if (!std::isfinite(v)) {
-    throw InputError(path_, "field " + std::to_string(col + 1) + " is not finite: '" + s + "'", row.line);
+    throw InputError(path_, "field " + std::to_string(col + 1) + " is not finite: '" + row.fields[col] + "'", row.line);
   }
   return v;
 }
 
-// Decimal seconds ("1403715274.30214", "1.403715529112143517e+09", "-0.5") to ns without a double, so that
-// 19-digit timestamps survive exactly: the digits are shifted by the exponent and rounded half up at the ns digit.
+template <typename T>
+T Table::parse(const TableRow& row, std::size_t col, const char* what) const {
+  const std::string& s = text(row, col);
+  T v{};
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || end != s.data() + s.size()) {
+    throw InputError(path_, "field " + std::to_string(col + 1) + " is not " + what + ": '" + s + "'", row.line);
+  }
+  return v;
+}
+
 TimeNs Table::seconds_as_ns(const TableRow& row, std::size_t col) const {
   const std::string& s = text(row, col);
   const auto bad = [&](const char* problem) {

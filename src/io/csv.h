@@ -35,6 +35,10 @@ class Table {
   void require_increasing(const std::vector<TimeNs>& times) const;
 
  private:
+  // The whole field as a T (std::from_chars), else InputError "field N is not <what>".
+  template <typename T>
+  T parse(const TableRow& row, std::size_t col, const char* what) const;
+
   std::string path_;
   std::vector<TableRow> rows_;
 };

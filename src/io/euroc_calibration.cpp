@@ -24,22 +24,20 @@ EurocCamera read_euroc_camera_yaml(const std::string& path) {
   const YAML::Node node = load_yaml_file(path);
   EurocCamera cam;
   cam.T_B_C = yaml_transform(node, "T_BS", path);
-  const std::string model = yaml_string(node, "camera_model", path);
-  if (model != "pinhole") throw InputError(path, "camera_model '" + model + "' is not supported (pinhole only)");
   CameraIntrinsics& c = cam.intrinsics;
-  const std::vector<double> res = yaml_doubles(node, "resolution", path, 2);
-  c.width_px = static_cast<int>(res[0]);
-  c.height_px = static_cast<int>(res[1]);
-  const std::vector<double> k = yaml_doubles(node, "intrinsics", path, 4);
-  c.fx = k[0];
-  c.fy = k[1];
-  c.cx = k[2];
-  c.cy = k[3];
-  c.distortion = parse_distortion_model(yaml_string(node, "distortion_model", path), path);
-  c.distortion_coeffs =
-      yaml_doubles(node, "distortion_coefficients", path, c.distortion == DistortionModel::kNone ? 0 : 4);
+  c = read_pinhole(node, path, "distortion_coefficients");
   c.rate_hz = node["rate_hz"] ? yaml_double(node, "rate_hz", path) : 0.0;
   return cam;
+}
+
+void read_euroc_cameras(const std::string& mav0, const SE3& T_B_I, RigCalibration& calib) {
+  const EurocCamera left = read_euroc_camera_yaml(mav0 + "/cam0/sensor.yaml");
+  const EurocCamera right = read_euroc_camera_yaml(mav0 + "/cam1/sensor.yaml");
+  const SE3 T_I_B = T_B_I.inverse();
+  calib.cam0 = left.intrinsics;
+  calib.cam1 = right.intrinsics;
+  calib.T_I_C0 = T_I_B * left.T_B_C;
+  calib.T_I_C1 = T_I_B * right.T_B_C;
 }
 
 EurocImu read_euroc_imu_yaml(const std::string& path) {

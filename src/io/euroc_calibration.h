@@ -25,6 +25,8 @@ struct EurocLidar {
 };
 
 EurocCamera read_euroc_camera_yaml(const std::string& path);
+// cam0 and cam1 of a mav0 folder into calib (intrinsics, T_I_C = T_B_I^-1 T_B_C).
+void read_euroc_cameras(const std::string& mav0, const SE3& T_B_I, RigCalibration& calib);
 EurocImu read_euroc_imu_yaml(const std::string& path);
 EurocLidar read_euroc_lidar_yaml(const std::string& path);
 // T_BS of any sensor.yaml (ground-truth "sensor"); identity when the file has none.

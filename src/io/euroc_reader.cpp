@@ -47,13 +47,7 @@ DatasetIndex index_euroc(const std::string& root) {
   if (cam0 != cam1) throw InputError(mav0.string(), "has only one of cam0/ and cam1/ (stereo needs both)");
   if (cam0) {
     index.has_cameras = true;
-    const SE3 T_I_B = imu.T_B_I.inverse();
-    const EurocCamera left = read_euroc_camera_yaml((mav0 / "cam0" / "sensor.yaml").string());
-    const EurocCamera right = read_euroc_camera_yaml((mav0 / "cam1" / "sensor.yaml").string());
-    calib.cam0 = left.intrinsics;
-    calib.cam1 = right.intrinsics;
-    calib.T_I_C0 = T_I_B * left.T_B_C;
-    calib.T_I_C1 = T_I_B * right.T_B_C;
+    read_euroc_cameras(mav0.string(), imu.T_B_I, calib);
     validate_calibration(calib, mav0.string());
     const auto left_rows = read_camera_csv((mav0 / "cam0").string(), false, problems);
     const auto right_rows = read_camera_csv((mav0 / "cam1").string(), false, problems);

@@ -3,13 +3,13 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "common/error.h"
 #include "common/json_writer.h"
+#include "io/csv.h"
 
 namespace vilslam {
 namespace {
@@ -73,27 +73,14 @@ TrajectoryFormat parse_trajectory_format(const std::string& name) {
 
 TrajectoryFormat detect_trajectory_format(const std::string& path) {
   if (std::filesystem::path(path).extension() == ".csv") return TrajectoryFormat::kEuroc;
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "cannot open file");
-  std::string text;
-  long line = 0;
-  while (std::getline(in, text)) {
-    ++line;
-    const auto first = text.find_first_not_of(" \t\r");
-    if (first == std::string::npos || text[first] == '#') continue;
-    if (text.find(',') != std::string::npos) return TrajectoryFormat::kEuroc;
-    int columns = 0;
-    bool in_token = false;
-    for (char c : text) {
-      const bool space = c == ' ' || c == '\t' || c == '\r';
-      if (!space && !in_token) ++columns;
-      in_token = !space;
-    }
-    if (columns == 8) return TrajectoryFormat::kTum;
-    if (columns == 12) return TrajectoryFormat::kKitti;
-    throw InputError(path, "cannot tell the trajectory format from " + std::to_string(columns) + " columns", line);
-  }
-  throw InputError(path, "no data rows to tell the trajectory format from");
+  const Table table(path, ' ', 1);
+  if (table.rows().empty()) throw InputError(path, "no data rows to tell the trajectory format from");
+  const TableRow& first = table.rows().front();
+  if (first.fields.front().find(',') != std::string::npos) return TrajectoryFormat::kEuroc;
+  if (first.fields.size() == 8) return TrajectoryFormat::kTum;
+  if (first.fields.size() == 12) return TrajectoryFormat::kKitti;
+  throw InputError(path, "cannot tell the trajectory format from " + std::to_string(first.fields.size()) + " columns",
+                   first.line);
 }
 
 void write_trajectory(const std::string& path, const Trajectory& traj, TrajectoryFormat format) {

@@ -24,12 +24,15 @@ Vec3 vec3(const Table& table, const TableRow& row, std::size_t col) {
   return Vec3(table.number(row, col), table.number(row, col + 1), table.number(row, col + 2));
 }
 
-SE3 pose_from_quaternion(const Table& table, const TableRow& row, const Vec3& t, double w, double x, double y, double z) {
-  const double norm = std::sqrt(w * w + x * x + y * y + z * z);
+// Translation from columns p_col..p_col+2, quaternion w from w_col and x, y, z from xyz_col..xyz_col+2.
+SE3 pose_from_columns(const Table& table, const TableRow& row, std::size_t p_col, std::size_t w_col, std::size_t xyz_col) {
+  const double w = table.number(row, w_col);
+  const Vec3 xyz = vec3(table, row, xyz_col);
+  const double norm = std::sqrt(w * w + xyz.squaredNorm());
   if (std::abs(norm - 1.0) > kQuatNormTolerance) {
     throw InputError(table.path(), "quaternion is not unit (|q| = " + std::to_string(norm) + ")", row.line);
   }
-  return SE3(Quat(w, x, y, z), t);
+  return SE3(Quat(w, xyz.x(), xyz.y(), xyz.z()), vec3(table, row, p_col));
 }
 
 std::vector<TimeNs> times_of(const Trajectory& traj) {
@@ -43,10 +46,7 @@ Trajectory read_tum(const std::string& path) {
   Trajectory traj;
   for (const TableRow& row : table.rows()) {
     require_columns(table, row, "8 (t x y z qx qy qz qw)", row.fields.size() == 8);
-    const Vec3 t = vec3(table, row, 1);
-    const Vec3 q_xyz = vec3(table, row, 4);
-    const SE3 pose = pose_from_quaternion(table, row, t, table.number(row, 7), q_xyz.x(), q_xyz.y(), q_xyz.z());
-    traj.push_back({table.seconds_as_ns(row, 0), pose});
+    traj.push_back({table.seconds_as_ns(row, 0), pose_from_columns(table, row, 1, 7, 4)});
   }
   table.require_increasing(times_of(traj));
   return traj;
@@ -59,10 +59,7 @@ Trajectory read_euroc(const std::string& path) {
     const std::size_t n = row.fields.size();
     require_columns(table, row, "8, 11, 14 or 17 (t, p, q_wxyz[, v, b_w, b_a])", n <= 17 && (n - 8) % 3 == 0);
     for (std::size_t col = 8; col < n; ++col) table.number(row, col);  // extra state columns must be numbers too
-    const Vec3 t = vec3(table, row, 1);
-    const Vec3 q_xyz = vec3(table, row, 5);
-    const SE3 pose = pose_from_quaternion(table, row, t, table.number(row, 4), q_xyz.x(), q_xyz.y(), q_xyz.z());
-    traj.push_back({table.time_ns(row, 0), pose});
+    traj.push_back({table.time_ns(row, 0), pose_from_columns(table, row, 1, 4, 5)});
   }
   table.require_increasing(times_of(traj));
   return traj;

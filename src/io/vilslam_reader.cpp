@@ -18,20 +18,14 @@ namespace fs = std::filesystem;
 RigCalibration calibration_from_sensor_yamls(const fs::path& mav0) {
   RigCalibration calib;
   const EurocImu imu = read_euroc_imu_yaml((mav0 / "imu0" / "sensor.yaml").string());
-  const SE3 T_I_B = imu.T_B_I.inverse();
   calib.imu = imu.noise;
-  const EurocCamera left = read_euroc_camera_yaml((mav0 / "cam0" / "sensor.yaml").string());
-  const EurocCamera right = read_euroc_camera_yaml((mav0 / "cam1" / "sensor.yaml").string());
-  calib.cam0 = left.intrinsics;
-  calib.cam1 = right.intrinsics;
-  calib.T_I_C0 = T_I_B * left.T_B_C;
-  calib.T_I_C1 = T_I_B * right.T_B_C;
+  read_euroc_cameras(mav0.string(), imu.T_B_I, calib);
   const fs::path lidar_yaml = mav0 / "lidar0" / "sensor.yaml";
   if (fs::exists(lidar_yaml)) {
     const EurocLidar lidar = read_euroc_lidar_yaml(lidar_yaml.string());
     calib.has_lidar = true;
     calib.lidar = lidar.intrinsics;
-    calib.T_I_L = T_I_B * lidar.T_B_L;
+    calib.T_I_L = imu.T_B_I.inverse() * lidar.T_B_L;
   }
   validate_calibration(calib, mav0.string());
   return calib;

@@ -1,0 +1,55 @@
+#pragma once
+// Every tuning value of the visual frontend, with defaults fit for EuRoC-like 752x480 stereo.
+#include <cstdint>
+#include <string>
+
+namespace vilslam {
+
+struct FrontendConfig {
+  // Extraction runs when fewer tracked stereo matches than this survive (and on the first pair).
+  int min_tracked_matches = 150;
+  // Shi-Tomasi (cv::goodFeaturesToTrack) per image.
+  int max_corners = 600;
+  double corner_quality = 0.003;
+  double corner_min_distance_px = 8;
+  int corner_block_size = 3;
+  int corner_subpix_half_window_px = 3;  // cv::cornerSubPix refinement; 0 keeps integer corners
+  // New corners closer than this to an existing (tracked) feature of the same image are eliminated.
+  double elimination_distance_px = 8;
+  // Pyramidal KLT (cv::calcOpticalFlowPyrLK).
+  int klt_window_px = 21;
+  int klt_pyramid_levels = 3;
+  int klt_max_iterations = 30;
+  double klt_epsilon = 0.01;
+  // Forward-backward check: a track survives when tracking back lands this close to its start.
+  double klt_max_forward_backward_px = 1.0;
+  // ORB descriptors (cv::ORB::compute) on the surviving corners; corners nearer the border are dropped.
+  int orb_patch_size = 31;
+  // Brute-force stereo matching.
+  int max_descriptor_distance = 60;     // Hamming, out of 256 bits
+  double ratio_test = 0.75;             // best / second-best distance
+  bool cross_check = true;              // the right corner's best left match must be the same corner
+  double max_epipolar_distance_px = 2.0;
+  double min_depth_m = 0.3;
+  double max_depth_m = 40.0;
+  // KLT (left -> right, started at the matched corner) refines new matches; a match whose refinement
+  // fails or moves farther than this is dropped. 0 disables the refinement.
+  double max_stereo_refinement_px = 3.0;
+  // Outlier rejection on average reprojection errors (left and right image).
+  double max_stereo_reprojection_px = 1.5;
+  double max_temporal_reprojection_px = 3.0;
+  // Frame-to-frame motion for the temporal check: PnP RANSAC on the previous pair's 3D points.
+  int pnp_min_points = 10;
+  int pnp_ransac_iterations = 100;
+  double pnp_ransac_threshold_px = 2.0;
+  std::uint64_t ransac_seed = 1;
+};
+
+// Reads the keys present in a YAML map over the defaults. Throws InputError(path, ...) for a missing
+// file, a malformed value, an unknown key or a value out of its range.
+FrontendConfig load_frontend_config(const std::string& path);
+
+// Throws InputError(source, ...) when a value is out of range.
+void validate_frontend_config(const FrontendConfig& config, const std::string& source);
+
+}  // namespace vilslam

@@ -1,0 +1,41 @@
+#pragma once
+// Data association of LOAM mapping (Zhang & Singh 2014, Sec. VI): a feature point is matched to the line
+// (edge) or plane (surface) fitted to its nearest map points, when the fit is line-like or planar.
+#include <optional>
+#include <vector>
+
+#include "lidar/residuals.h"
+#include "lidar/voxel_map.h"
+
+namespace vilslam::lidar {
+
+struct AssociationConfig {
+  int num_neighbors = 5;
+  double max_neighbor_distance_m = 1.0;
+  double min_line_eigen_ratio = 3.0;          // largest / second eigenvalue of the neighbours' scatter
+  double max_plane_point_distance_m = 0.2;    // every neighbour within this of the fitted plane
+};
+
+struct Line {
+  Vec3 point = Vec3::Zero();
+  Vec3 direction = Vec3::UnitX();
+};
+
+struct Plane {
+  Vec3 normal = Vec3::UnitZ();
+  double offset_m = 0.0;
+};
+
+// Principal axis of the points when its eigenvalue dominates the second one by min_eigen_ratio.
+std::optional<Line> fit_line(const std::vector<Vec3>& points, double min_eigen_ratio);
+// Least-squares plane (smallest scatter eigenvector) when every point lies within max_distance_m of it.
+std::optional<Plane> fit_plane(const std::vector<Vec3>& points, double max_distance_m);
+
+// Correspondence of feature p_L (seen at p_W = T_W_L p_L) with the map, or nothing when the neighbours
+// are too few, too far, or not line-like / not planar.
+std::optional<EdgeCorrespondence> associate_edge(const Vec3& p_L, const Vec3& p_W, const VoxelMap& edge_map,
+                                                 const AssociationConfig& config);
+std::optional<PlaneCorrespondence> associate_plane(const Vec3& p_L, const Vec3& p_W, const VoxelMap& surface_map,
+                                                   const AssociationConfig& config);
+
+}  // namespace vilslam::lidar

@@ -1,0 +1,136 @@
+#include "lidar/features.h"
+
+#include <algorithm>
+
+namespace vilslam::lidar {
+
+namespace {
+
+// One ring's points in azimuth order with their smoothness and selection state.
+struct RingPoints {
+  std::vector<Eigen::Vector3f> p;
+  std::vector<float> range;
+  std::vector<float> t_offset_s;
+  std::vector<float> smoothness;
+  std::vector<std::uint8_t> usable;  // 0 once rejected or taken (or suppressed by a taken neighbour)
+};
+
+RingPoints gather(const LidarScan& scan, const std::vector<std::uint32_t>& indices) {
+  RingPoints ring;
+  ring.p.reserve(indices.size());
+  for (const std::uint32_t i : indices) {
+    const LidarPoint& q = scan.points[i];
+    ring.p.emplace_back(q.x, q.y, q.z);
+    ring.range.push_back(ring.p.back().norm());
+    ring.t_offset_s.push_back(q.t_offset_s);
+  }
+  ring.smoothness.assign(indices.size(), 0.0f);
+  ring.usable.assign(indices.size(), 0);
+  return ring;
+}
+
+// LOAM eq. (1): c = |sum_j (X_i - X_j)| / (|S| |X_i|), over the half_window neighbours on each side; the
+// window sums come from prefix sums (in double, so that they do not lose precision along the ring).
+void compute_smoothness(RingPoints& ring, int half_window) {
+  const int n = static_cast<int>(ring.p.size());
+  std::vector<Vec3> prefix(static_cast<std::size_t>(n) + 1, Vec3::Zero());
+  for (int i = 0; i < n; ++i) prefix[i + 1] = prefix[i] + ring.p[i].cast<double>();
+  const double count = 2.0 * half_window + 1.0;
+  for (int i = half_window; i < n - half_window; ++i) {
+    const Vec3 window = prefix[i + half_window + 1] - prefix[i - half_window];
+    const Vec3 sum = count * ring.p[i].cast<double>() - window;
+    ring.smoothness[i] = static_cast<float>(sum.norm() / (2.0 * half_window * ring.range[i]));
+    ring.usable[i] = 1;
+  }
+}
+
+// LOAM Sec. V-A rejections: points on surfaces nearly parallel to the beam (both neighbours far away
+// relative to the range) and points on the far side of an occlusion boundary.
+void reject_unreliable(RingPoints& ring, const FeatureConfig& config) {
+  const int n = static_cast<int>(ring.p.size());
+  const int w = config.half_window;
+  const float gap_ratio = static_cast<float>(config.max_neighbor_gap_ratio);
+  for (int i = 1; i + 1 < n; ++i) {
+    const float limit = gap_ratio * ring.range[i];
+    if ((ring.p[i + 1] - ring.p[i]).norm() > limit && (ring.p[i] - ring.p[i - 1]).norm() > limit) ring.usable[i] = 0;
+  }
+  for (int i = 0; i + 1 < n; ++i) {
+    const float near = std::min(ring.range[i], ring.range[i + 1]);
+    if (std::abs(ring.range[i] - ring.range[i + 1]) <= config.occlusion_jump_ratio * near) continue;
+    // The farther side may be occluded by the nearer object: its points next to the boundary are not edges.
+    const bool far_is_left = ring.range[i] > ring.range[i + 1];
+    const int first = far_is_left ? std::max(0, i - w) : i + 1;
+    const int last = far_is_left ? i : std::min(n - 1, i + 1 + w);
+    for (int j = first; j <= last; ++j) ring.usable[j] = 0;
+  }
+}
+
+// Marks the taken point and its neighbours within half_window along the ring as no longer selectable,
+// stopping at a gap so that points across a discontinuity stay available.
+void suppress_neighbours(RingPoints& ring, int i, int half_window, float max_gap_m) {
+  ring.usable[i] = 0;
+  const int n = static_cast<int>(ring.p.size());
+  for (int step : {-1, 1}) {
+    for (int k = 1; k <= half_window; ++k) {
+      const int j = i + step * k;
+      if (j < 0 || j >= n || (ring.p[j] - ring.p[j - step]).norm() > max_gap_m) break;
+      ring.usable[j] = 0;
+    }
+  }
+}
+
+// Takes the sharpest usable points of ring[begin, end) as edges and the flattest as surfaces (LOAM Sec. V-A).
+void select_in_sector(RingPoints& ring, int begin, int end, const FeatureConfig& config,
+                      std::vector<FeaturePoint>& edges, std::vector<FeaturePoint>& surfaces) {
+  // Candidates in order of selection: sharpest edges first, flattest surfaces first (ties by position).
+  std::vector<int> edge_candidates, surface_candidates;
+  for (int i = begin; i < end; ++i) {
+    if (!ring.usable[i]) continue;
+    if (ring.smoothness[i] > config.edge_min_smoothness) edge_candidates.push_back(i);
+    if (ring.smoothness[i] < config.surface_max_smoothness) surface_candidates.push_back(i);
+  }
+  const auto sharper = [&](int a, int b) {
+    return ring.smoothness[a] > ring.smoothness[b] || (ring.smoothness[a] == ring.smoothness[b] && a < b);
+  };
+  const auto flatter = [&](int a, int b) {
+    return ring.smoothness[a] < ring.smoothness[b] || (ring.smoothness[a] == ring.smoothness[b] && a < b);
+  };
+  std::sort(edge_candidates.begin(), edge_candidates.end(), sharper);
+  std::sort(surface_candidates.begin(), surface_candidates.end(), flatter);
+  constexpr float kSuppressGapM = 0.2f;
+  const auto take = [&](const std::vector<int>& candidates, int max_count, std::vector<FeaturePoint>& out) {
+    int taken = 0;
+    for (auto it = candidates.begin(); it != candidates.end() && taken < max_count; ++it) {
+      if (!ring.usable[*it]) continue;
+      out.push_back({ring.p[*it].cast<double>(), ring.t_offset_s[*it], ring.smoothness[*it]});
+      suppress_neighbours(ring, *it, config.half_window, kSuppressGapM);
+      ++taken;
+    }
+  };
+  take(edge_candidates, config.max_edges_per_sector, edges);
+  take(surface_candidates, config.max_surfaces_per_sector, surfaces);
+}
+
+}  // namespace
+
+FeatureScan extract_features(const LidarScan& scan, const RingConfig& ring_config, const FeatureConfig& config) {
+  FeatureScan features;
+  features.t_ns = scan.t_ns;
+  const int w = config.half_window;
+  for (const std::vector<std::uint32_t>& indices : assign_rings(scan, ring_config)) {
+    const int n = static_cast<int>(indices.size());
+    if (n < 2 * w + 2) continue;
+    RingPoints ring = gather(scan, indices);
+    compute_smoothness(ring, w);
+    reject_unreliable(ring, config);
+    const int span = n - 2 * w;
+    for (int s = 0; s < config.sectors_per_ring; ++s) {
+      const int begin = w + span * s / config.sectors_per_ring;
+      const int end = w + span * (s + 1) / config.sectors_per_ring;
+      select_in_sector(ring, begin, end, config, features.edges, features.surfaces);
+    }
+  }
+  return features;
+}
+
+}  // namespace vilslam::lidar

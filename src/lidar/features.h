@@ -1,0 +1,38 @@
+#pragma once
+// LOAM feature extraction (Zhang & Singh 2014, Sec. V-A): per ring, the smoothness of each point over its
+// neighbours along the ring picks sharp edge points and flat surface points, spread evenly over sectors.
+#include <vector>
+
+#include "common/lie.h"
+#include "common/types.h"
+#include "lidar/ring_assignment.h"
+
+namespace vilslam::lidar {
+
+struct FeatureConfig {
+  int half_window = 5;              // neighbours on each side along the ring for the smoothness
+  int sectors_per_ring = 6;         // each ring is split into this many equal sub-regions
+  int max_edges_per_sector = 20;
+  int max_surfaces_per_sector = 40;
+  double edge_min_smoothness = 0.02;     // LOAM eq. (1), dimensionless: above this a point may be an edge
+  double surface_max_smoothness = 0.005; // below this a point may be a surface point
+  double occlusion_jump_ratio = 0.1;     // a range jump above this fraction of the range marks an occlusion
+  double max_neighbor_gap_ratio = 0.02;  // both neighbour gaps above this fraction of range: beam ~ surface
+};
+
+// A feature point in the LiDAR frame at its own measurement instant.
+struct FeaturePoint {
+  Vec3 p_L = Vec3::Zero();
+  float t_offset_s = 0.0f;  // since the scan's t_ns
+  float smoothness = 0.0f;
+};
+
+struct FeatureScan {
+  TimeNs t_ns = 0;  // the sweep's start time
+  std::vector<FeaturePoint> edges;
+  std::vector<FeaturePoint> surfaces;
+};
+
+FeatureScan extract_features(const LidarScan& scan, const RingConfig& ring_config, const FeatureConfig& config);
+
+}  // namespace vilslam::lidar

@@ -1,0 +1,47 @@
+#pragma once
+// Scan-to-map registration (paper Sec. "Scan to map registration", after LOAM): the dewarped feature points
+// are matched to lines and planes of the map and the LiDAR pose is refined by Levenberg-Marquardt on the
+// robustified point-to-line and point-to-plane distances, re-associating between outer iterations.
+#include "lidar/correspondences.h"
+#include "lidar/degeneracy.h"
+#include "lidar/feature_map.h"
+
+namespace vilslam::lidar {
+
+enum class RobustLoss { kHuber, kCauchy };
+
+struct RegistrationConfig {
+  AssociationConfig association;
+  int max_outer_iterations = 10;  // each re-associates correspondences
+  int max_inner_iterations = 4;   // LM steps per association
+  double converged_translation_m = 1e-4;
+  double converged_rotation_rad = 1e-5;
+  RobustLoss loss = RobustLoss::kCauchy;
+  double loss_scale_m = 0.1;
+  double source_edge_leaf_m = 0.2;     // the scan's features are voxel-downsampled before matching
+  double source_surface_leaf_m = 0.4;
+  // Zhang et al. 2016 threshold on the eigenvalues of J^T J, taken per matched feature so that it does not
+  // depend on how many features the scan has.
+  double degenerate_min_eigenvalue_per_match = 0.01;
+  bool remap_degenerate_directions = false;  // keep the initial (prior) motion along degenerate directions
+};
+
+struct RegistrationResult {
+  SE3 T_W_L;
+  bool converged = false;
+  int outer_iterations = 0;
+  int num_edge_matches = 0;
+  int num_surface_matches = 0;
+  int num_edge_features = 0;
+  int num_surface_features = 0;
+  double matched_fraction = 0.0;   // source features that found a line or plane
+  double rms_residual_m = 0.0;     // over matched features, at the solution
+  double inlier_fraction = 0.0;    // matched features within loss_scale_m of their line or plane
+  Degeneracy degeneracy;           // of the information matrix at the solution
+};
+
+// Registers dewarped features (LiDAR frame at the scan end) to the map, starting from T_W_L_init.
+RegistrationResult register_scan(const FeatureScan& features_L, const FeatureMap& map, const SE3& T_W_L_init,
+                                 const RegistrationConfig& config);
+
+}  // namespace vilslam::lidar

@@ -1,0 +1,104 @@
+#pragma once
+// Test helper: a spinning 16-beam LiDAR ray-cast against a box-shaped room holding box obstacles, with
+// every point measured from the sensor pose at its own instant (as a moving real sensor does).
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <vector>
+
+#include "common/lie.h"
+#include "common/types.h"
+
+namespace vilslam::test {
+
+struct Box {
+  Vec3 lo, hi;
+};
+
+struct Scene {
+  Box room;                 // seen from inside
+  std::vector<Box> blocks;  // seen from outside
+};
+
+// The default scene: a 24 x 16 x 5 m room with two blocks (convex vertical edges) off the centre.
+inline Scene box_room() {
+  return {{Vec3(-12, -8, -2), Vec3(12, 8, 3)},
+          {{Vec3(3, 2, -2), Vec3(5, 4, 1)}, {Vec3(-6, -5, -2), Vec3(-4.5, -3, 2)}}};
+}
+
+// Slab intersection of the ray o + s d with a box: entry and exit parameters (entry > exit: miss).
+inline std::pair<double, double> slab(const Box& b, const Vec3& o, const Vec3& d) {
+  double enter = -std::numeric_limits<double>::infinity(), leave = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    const double s0 = (b.lo[k] - o[k]) / d[k], s1 = (b.hi[k] - o[k]) / d[k];
+    enter = std::max(enter, std::min(s0, s1));
+    leave = std::min(leave, std::max(s0, s1));
+  }
+  return {enter, leave};
+}
+
+inline double cast(const Scene& scene, const Vec3& o, const Vec3& d) {
+  double range = slab(scene.room, o, d).second;
+  for (const Box& b : scene.blocks) {
+    const auto [enter, leave] = slab(b, o, d);
+    if (enter <= leave && enter > 0.0) range = std::min(range, enter);
+  }
+  return range;
+}
+
+// One sweep of a VLP-16-like sensor (16 rings, -15..15 deg, azimuth_step_deg) over duration_s from t_ns.
+inline LidarScan sweep(const Scene& scene, const std::function<SE3(TimeNs)>& T_W_L, TimeNs t_ns,
+                       double duration_s = 0.1, double azimuth_step_deg = 0.2) {
+  LidarScan scan;
+  scan.t_ns = t_ns;
+  const int columns = static_cast<int>(std::lround(360.0 / azimuth_step_deg));
+  for (int c = 0; c < columns; ++c) {
+    const double t_offset_s = duration_s * c / columns;
+    const SE3 T = T_W_L(t_ns + s_to_ns(t_offset_s));
+    const double azimuth = -M_PI + 2.0 * M_PI * c / columns;
+    for (int ring = 0; ring < 16; ++ring) {
+      const double elevation = (-15.0 + 2.0 * ring) * M_PI / 180.0;
+      const Vec3 d_L(std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth),
+                     std::sin(elevation));
+      const Vec3 d_W = T.rotation() * d_L;
+      const double range = cast(scene, T.translation(), d_W);
+      const Vec3 p_L = range * d_L;
+      LidarPoint p;
+      p.x = static_cast<float>(p_L.x());
+      p.y = static_cast<float>(p_L.y());
+      p.z = static_cast<float>(p_L.z());
+      p.t_offset_s = static_cast<float>(t_offset_s);
+      p.ring = static_cast<std::uint16_t>(ring);
+      scan.points.push_back(p);
+    }
+  }
+  return scan;
+}
+
+// Distance from p to the nearest of the 12 edges of box b, or of its 4 vertical (z) edges only.
+inline double distance_to_box_edges(const Box& b, const Vec3& p, bool vertical_only = false) {
+  double best = std::numeric_limits<double>::infinity();
+  for (int axis = vertical_only ? 2 : 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    const double along = std::clamp(p[axis], b.lo[axis], b.hi[axis]);
+    for (double cu : {b.lo[u], b.hi[u]}) {
+      for (double cv : {b.lo[v], b.hi[v]}) {
+        Vec3 q;
+        q[axis] = along;
+        q[u] = cu;
+        q[v] = cv;
+        best = std::min(best, (p - q).norm());
+      }
+    }
+  }
+  return best;
+}
+
+inline double distance_to_scene_edges(const Scene& scene, const Vec3& p, bool vertical_only = false) {
+  double best = distance_to_box_edges(scene.room, p, vertical_only);
+  for (const Box& b : scene.blocks) best = std::min(best, distance_to_box_edges(b, p, vertical_only));
+  return best;
+}
+
+}  // namespace vilslam::test

@@ -1,0 +1,95 @@
+#include <gtest/gtest.h>
+
+#include "lidar/features.h"
+#include "synthetic_scene.h"
+
+namespace vilslam::lidar {
+namespace {
+
+LidarScan static_sweep(const test::Scene& scene, const SE3& T_W_L) {
+  return test::sweep(scene, [T_W_L](TimeNs) { return T_W_L; }, 0);
+}
+
+TEST(RingAssignment, ElevationGivesTheRingField) {
+  const LidarScan with_ring = static_sweep(test::box_room(), SE3(Quat::Identity(), Vec3(0.5, -1.0, 0.0)));
+  LidarScan without_ring = with_ring;
+  without_ring.has_ring = false;
+  for (LidarPoint& p : without_ring.points) p.ring = 0;
+  const Rings a = assign_rings(with_ring, RingConfig{});
+  const Rings b = assign_rings(without_ring, RingConfig{});
+  ASSERT_EQ(a.size(), 16u);
+  EXPECT_EQ(a, b);
+  // Each ring is in azimuth order.
+  for (const auto& ring : a) {
+    for (std::size_t i = 1; i < ring.size(); ++i) {
+      const LidarPoint& p = with_ring.points[ring[i - 1]];
+      const LidarPoint& q = with_ring.points[ring[i]];
+      EXPECT_LE(std::atan2(p.y, p.x), std::atan2(q.y, q.x));
+    }
+  }
+}
+
+TEST(Features, EdgesOnBoxEdgesAndSurfacesOnFaces) {
+  const test::Scene scene = test::box_room();
+  const SE3 T_W_L(Quat::Identity(), Vec3(0.5, -1.0, 0.0));
+  FeatureConfig config;
+  const FeatureScan f = extract_features(static_sweep(scene, T_W_L), RingConfig{}, config);
+  ASSERT_GT(f.edges.size(), 30u);
+  ASSERT_GT(f.surfaces.size(), 500u);
+  EXPECT_LE(f.edges.size(), std::size_t(16 * config.sectors_per_ring * config.max_edges_per_sector));
+  EXPECT_LE(f.surfaces.size(), std::size_t(16 * config.sectors_per_ring * config.max_surfaces_per_sector));
+  int edges_on_blocks = 0;
+  for (const FeaturePoint& e : f.edges) {
+    const Vec3 p_W = T_W_L * e.p_L;
+    // Points on the far side of an occluding block are no edges: every edge is on a real box edge.
+    EXPECT_LT(test::distance_to_scene_edges(scene, p_W), 0.1) << p_W.transpose();
+    for (const test::Box& b : scene.blocks) edges_on_blocks += test::distance_to_box_edges(b, p_W) < 0.1;
+  }
+  EXPECT_GT(edges_on_blocks, 10);
+  // A level sensor's rings cross the vertical edges (horizontal ones run along the rings and may be flat
+  // along them): no surface point sits on a vertical edge.
+  for (const FeaturePoint& s : f.surfaces) {
+    EXPECT_GT(test::distance_to_scene_edges(scene, T_W_L * s.p_L, true), 0.05) << (T_W_L * s.p_L).transpose();
+  }
+}
+
+TEST(Features, RejectsSurfacesNearlyParallelToTheBeam) {
+  // In a 4 m wide corridor the side walls are swept at ever more grazing angles down its length.
+  const test::Scene corridor{{Vec3(-500, -2, -1.5), Vec3(500, 2, 2)}, {}};
+  RingConfig rings;
+  rings.max_range_m = 60.0;
+  const LidarScan scan = static_sweep(corridor, SE3());
+  // Angle between the beam and the side wall's normal (y axis), seen from above, in degrees.
+  const auto grazing_deg = [](const Vec3& p) { return std::acos(std::abs(p.y()) / p.head<2>().norm()) * 180 / M_PI; };
+  const auto on_side_wall = [](const Vec3& p) { return std::abs(std::abs(p.y()) - 2.0) < 1e-3; };
+  int steep = 0;
+  for (const LidarPoint& q : scan.points) {
+    const Vec3 p(q.x, q.y, q.z);
+    steep += on_side_wall(p) && p.norm() < rings.max_range_m && grazing_deg(p) > 85.0;
+  }
+  ASSERT_GT(steep, 100);  // the sweep does contain such points
+  const FeatureScan f = extract_features(scan, rings, FeatureConfig{});
+  int on_walls = 0;
+  for (const FeaturePoint& s : f.surfaces) {
+    if (!on_side_wall(s.p_L)) continue;
+    ++on_walls;
+    // Neighbour gaps exceed 2 % of the range beyond about 80 deg for a 0.2 deg azimuth step.
+    EXPECT_LT(grazing_deg(s.p_L), 81.0) << s.p_L.transpose();
+  }
+  EXPECT_GT(on_walls, 50);
+}
+
+TEST(Features, CountsFollowTheConfig) {
+  const LidarScan scan = static_sweep(test::box_room(), SE3());
+  FeatureConfig config;
+  config.max_edges_per_sector = 1;
+  config.max_surfaces_per_sector = 3;
+  config.sectors_per_ring = 4;
+  const FeatureScan f = extract_features(scan, RingConfig{}, config);
+  EXPECT_LE(f.edges.size(), 16u * 4u);
+  EXPECT_GT(f.surfaces.size(), 16u * 4u * 2u);  // every sector of this room has flat points
+  EXPECT_LE(f.surfaces.size(), 16u * 4u * 3u);
+}
+
+}  // namespace
+}  // namespace vilslam::lidar
