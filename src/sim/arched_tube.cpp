@@ -62,7 +62,7 @@ bool ArchedTube::intersect(const Ray& ray, double t_max, ShapeHit* hit) const {
       for (const double t : {(-b - sq) / a, (-b + sq) / a}) {
         if (t <= kMinHitT || t > best) continue;
         const Vec3 q = o + t * d;
-        if (q.z() < -h || q.x() < 0 || q.x() > length_) continue;
+        if (q.z() < -h - kEdgeTol || q.x() < -kEdgeTol || q.x() > length_ + kEdgeTol) continue;
         // Angle from the -y direction, 0 at the floor edge y = -w, continuous over the whole arc.
         double angle = std::atan2(q.z(), -q.y()) + std::asin(h / r);
         if (angle < -1e-12) angle += 2 * M_PI;
@@ -74,7 +74,7 @@ bool ArchedTube::intersect(const Ray& ray, double t_max, ShapeHit* hit) const {
   if (std::abs(d.z()) > 1e-15) {
     const double t = (-h - o.z()) / d.z();
     const Vec3 q = o + t * d;
-    if (t > kMinHitT && t <= best && std::abs(q.y()) <= w && q.x() >= 0 && q.x() <= length_) {
+    if (t > kMinHitT && t <= best && std::abs(q.y()) <= w + kEdgeTol && q.x() >= -kEdgeTol && q.x() <= length_ + kEdgeTol) {
       accept(t, 1, Vec3(0, 0, 1), Eigen::Vector2d(q.x(), q.y() + w));
     }
   }
@@ -83,7 +83,7 @@ bool ArchedTube::intersect(const Ray& ray, double t_max, ShapeHit* hit) const {
       const double s_cap = face == 2 ? 0.0 : length_;
       const double t = (s_cap - o.x()) / d.x();
       const Vec3 q = o + t * d;
-      if (t <= kMinHitT || t > best || !inside_section(q.tail<2>(), r, h)) continue;
+      if (t <= kMinHitT || t > best || !inside_section(q.tail<2>(), r + kEdgeTol, h + kEdgeTol)) continue;
       accept(t, face, Vec3(face == 2 ? 1.0 : -1.0, 0, 0), Eigen::Vector2d(q.y() + w, q.z() + h));
     }
   }

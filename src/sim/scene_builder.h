@@ -1,29 +1,16 @@
 #pragma once
-// What a world generator produces (shapes, materials, route) and the small helpers it builds with:
-// a seeded random source and typed adders that give every shape its material and a uv offset.
+// What a world generator produces (shapes, materials, route) and the builder it fills: typed adders
+// that give every shape its material and a random uv offset, and the seeded random source.
 #include <cstdint>
 #include <memory>
 #include <utility>
 #include <vector>
 
+#include "sim/rng.h"
 #include "sim/shapes.h"
 #include "sim/world.h"
 
 namespace vilslam::sim {
-
-// SplitMix64 (Steele et al. 2014): a tiny, portable, seedable generator (std distributions are not
-// portable across standard libraries, so uniform draws are computed here).
-class Rng {
- public:
-  explicit Rng(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t next();
-  double uniform(double lo = 0.0, double hi = 1.0);
-  int integer(int lo, int hi);  // inclusive
-  bool chance(double p) { return uniform() < p; }
-
- private:
-  std::uint64_t state_;
-};
 
 struct Scene {
   std::vector<std::unique_ptr<Shape>> shapes;

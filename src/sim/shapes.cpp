@@ -28,7 +28,8 @@ int Shape::material_at(int face, const Eigen::Vector2d& uv) const {
 
 // ---------------------------------------------------------------- Box
 
-Box::Box(const Vec3& center_W, const Mat3& R_W_B, const Vec3& half) : center_(center_W), R_W_B_(R_W_B), half_(half) {
+Box::Box(const Vec3& center_W, const Mat3& R_W_B, const Vec3& half)
+    : center_(center_W), R_W_B_(R_W_B), half_(half), aligned_(R_W_B.isIdentity(0.0)) {
   face_material.assign(6, 0);
 }
 
@@ -38,8 +39,8 @@ Box Box::axis_aligned(const Vec3& min_W, const Vec3& max_W) {
 
 bool Box::intersect(const Ray& ray, double t_max, ShapeHit* hit) const {
   // Slab test in the box frame (Kay & Kajiya 1986).
-  const Vec3 o = R_W_B_.transpose() * (ray.origin - center_);
-  const Vec3 d = R_W_B_.transpose() * ray.dir;
+  const Vec3 o = aligned_ ? Vec3(ray.origin - center_) : Vec3(R_W_B_.transpose() * (ray.origin - center_));
+  const Vec3 d = aligned_ ? ray.dir : Vec3(R_W_B_.transpose() * ray.dir);
   double t_in = -std::numeric_limits<double>::infinity(), t_out = std::numeric_limits<double>::infinity();
   int axis_in = -1, axis_out = -1;
   for (int a = 0; a < 3; ++a) {
@@ -132,7 +133,7 @@ bool Cylinder::intersect(const Ray& ray, double t_max, ShapeHit* hit) const {
       for (const double t : {(-b - sq) / a, (-b + sq) / a}) {
         if (t <= kMinHitT || t > best) continue;
         const double z = ray.origin.z() + t * ray.dir.z();
-        if (z < z_min_ || z > z_max_) continue;
+        if (z < z_min_ - kEdgeTol || z > z_max_ + kEdgeTol) continue;
         const double x = ox + t * dx, y = oy + t * dy;
         double angle = std::atan2(y, x);
         if (angle < 0) angle += 2 * M_PI;
@@ -150,7 +151,7 @@ bool Cylinder::intersect(const Ray& ray, double t_max, ShapeHit* hit) const {
       const double t = (z_cap - ray.origin.z()) / ray.dir.z();
       if (t <= kMinHitT || t > best) continue;
       const double x = ox + t * dx, y = oy + t * dy;
-      if (x * x + y * y > radius_ * radius_) continue;
+      if (std::hypot(x, y) > radius_ + kEdgeTol) continue;
       best = t, found = true;
       hit->face = face;
       hit->normal = Vec3(0, 0, face == 1 ? -1.0 : 1.0);
@@ -216,7 +217,7 @@ bool Quad::intersect(const Ray& ray, double t_max, ShapeHit* hit) const {
   if (t <= kMinHitT || t > t_max) return false;
   const Vec3 r = ray.origin + t * ray.dir - corner_;
   const double u = r.dot(axis_u_), v = r.dot(axis_v_);
-  if (u < 0 || u > size_u_ || v < 0 || v > size_v_) return false;
+  if (u < -kEdgeTol || u > size_u_ + kEdgeTol || v < -kEdgeTol || v > size_v_ + kEdgeTol) return false;
   hit->t = t;
   hit->face = 0;
   hit->normal = normal_;

@@ -37,6 +37,9 @@ struct Decal {
 
 // Hits closer than this to the ray origin are ignored (rays that start on a surface).
 constexpr double kMinHitT = 1e-9;
+// Faces accept hits this far (m) outside their edges, so a ray through the edge shared by two faces
+// never slips between them through rounding.
+constexpr double kEdgeTol = 1e-7;
 
 class Shape {
  public:
@@ -77,6 +80,7 @@ class Box : public Shape {
   Vec3 center_;
   Mat3 R_W_B_;
   Vec3 half_;
+  bool aligned_;  // R_W_B is the identity: skip the rotations
 };
 
 // A vertical capped cylinder. Faces: 0 side (u = arc length from +x, v = z - z_min), 1 bottom, 2 top.
