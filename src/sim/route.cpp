@@ -77,6 +77,13 @@ double rounded_loop_length(const Polygon2& corners, double radius_m) {
   return length;
 }
 
+void scale_to_length(Polygon2* corners, double radius_m, double length_m) {
+  // Rounding takes a fixed length per corner, independent of the scale.
+  const double corner_loss = rounded_loop_length(*corners, radius_m) - rounded_loop_length(*corners, 0.0);
+  const double scale = (length_m - corner_loss) / rounded_loop_length(*corners, 0.0);
+  for (auto& c : *corners) c *= scale;
+}
+
 double polyline_length(const std::vector<Vec3>& points) {
   double length = 0;
   for (std::size_t i = 1; i < points.size(); ++i) length += (points[i] - points[i - 1]).norm();
