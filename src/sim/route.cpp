@@ -90,18 +90,6 @@ double polyline_length(const std::vector<Vec3>& points) {
   return length;
 }
 
-double distance_xy_to_polyline(const std::vector<Vec3>& points, const Eigen::Vector2d& p) {
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 1; i < points.size(); ++i) {
-    const Eigen::Vector2d a = points[i - 1].head<2>(), b = points[i].head<2>();
-    const Eigen::Vector2d ab = b - a;
-    const double len2 = ab.squaredNorm();
-    const double s = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-    best = std::min(best, (a + s * ab - p).norm());
-  }
-  return best;
-}
-
 double route_clearance(const std::vector<Vec3>& route_W, const Shape& shape) {
   double best = std::numeric_limits<double>::infinity();
   for (const Vec3& p : route_W) best = std::min(best, shape.distance(p));
