@@ -61,14 +61,10 @@ cv::Mat map_top_view(const World& world) {
   const PointCloud cloud = world.sample_surfaces(spacing_m);
   double route_z = 0;
   for (const Vec3& p : world.route_W()) route_z += p.z() / static_cast<double>(world.route_W().size());
-  // Cut 1 m above the route so ceilings and roofs do not hide the floor plan; leave out the floor.
-  const double z_clip = route_z + 1.0, z_floor = b.min().z() + 0.05;
-  std::vector<Eigen::Vector3f> above_floor;
-  for (const Eigen::Vector3f& p : cloud.points) {
-    if (p.z() > z_floor) above_floor.push_back(p);
-  }
+  // Cut 1 m above the route so ceilings and roofs do not hide the floor plan; floors and ground drop out.
+  const double z_clip = route_z + 1.0;
   TopView view(extent, kFigureSidePx);
-  view.draw_points(above_floor, z_floor, z_clip, z_clip, 1);
+  view.draw_points(cloud.points, b.min().z(), z_clip, z_clip, 2, 0.2);
   view.draw_path(world.route_W(), cv::Scalar(0, 0, 0), 2);
   view.draw_scale_bar();
   return view.image().clone();
