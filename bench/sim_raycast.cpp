@@ -1,6 +1,6 @@
 // Rays per second of World::raycast in every scenario, for camera-like ray bundles (a 90 deg pinhole
 // fan looking along the route) and for full VLP-16 sweeps. The camera renderer's budget is about
-// 0.25 us per ray (4 M rays/s) on one core.
+// 0.25 us per ray (4 M rays/s) on one core. Also the size and cost of the reference model.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -66,11 +66,21 @@ void BM_LidarSweep(benchmark::State& state) {
   state.SetLabel(vilslam::sim::scenario_name(world.scenario()));
 }
 
+// The reference model: surface samples 0.1 m apart (points and time per world).
+void BM_SampleSurfaces(benchmark::State& state) {
+  const World world = World::generate(static_cast<Scenario>(state.range(0)), 1);
+  std::size_t points = 0;
+  for (auto _ : state) points = world.sample_surfaces(0.1).size();
+  state.counters["points"] = static_cast<double>(points);
+  state.SetLabel(vilslam::sim::scenario_name(world.scenario()));
+}
+
 void scenarios(benchmark::internal::Benchmark* b) {
   for (int s = 0; s <= static_cast<int>(Scenario::kRoom); ++s) b->Arg(s);
 }
 
 BENCHMARK(BM_CameraRays)->Apply(scenarios);
 BENCHMARK(BM_LidarSweep)->Apply(scenarios)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SampleSurfaces)->Apply(scenarios)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace

@@ -23,9 +23,9 @@ std::vector<std::string> sensors(const DatasetIndex& index) {
   std::vector<std::string> names;
   const RigCalibration& c = index.calibration;
   if (index.has_cameras) {
-    for (const auto* cam : {&c.cam0, &c.cam1}) {
-      names.push_back((cam == &c.cam0 ? "cam0 " : "cam1 ") + std::to_string(cam->width_px) + "x" +
-                      std::to_string(cam->height_px) + " pinhole " + distortion_model_name(cam->distortion));
+    for (const auto& [name, cam] : {std::pair{"cam0 ", &c.cam0}, std::pair{"cam1 ", &c.cam1}}) {
+      names.push_back(name + std::to_string(cam->width_px) + "x" + std::to_string(cam->height_px) + " pinhole " +
+                      distortion_model_name(cam->distortion));
     }
   }
   if (!index.imu.empty()) names.push_back("imu0");

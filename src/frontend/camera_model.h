@@ -16,7 +16,8 @@ class CameraModel {
 
   // Undistorted normalized coordinates -> distorted normalized coordinates; J_distort = d(out)/d(xy).
   Eigen::Vector2d distort(const Eigen::Vector2d& xy, Eigen::Matrix2d* J_distort = nullptr) const;
-  // Inverse of distort (Gauss-Newton on the analytic Jacobian; Newton on theta for equidistant).
+  // Inverse of distort (Gauss-Newton on the analytic Jacobian; Newton on theta for equidistant). An
+  // equidistant pixel more than 90 degrees off the optical axis has no normalized coordinates.
   Eigen::Vector2d undistort(const Eigen::Vector2d& xy_distorted) const;
 
   // Undistorted normalized coordinates -> distorted pixel; J_px = d(px)/d(xy).

@@ -124,21 +124,19 @@ void Frontend::reject_temporal_outliers(std::vector<Track>* tracks, const std::v
 std::vector<Frontend::Track> Frontend::extract_new(const StereoFrame& frame, const ImagePyramid& left_pyramid,
                                                    const ImagePyramid& right_pyramid,
                                                    const std::vector<Track>& existing) {
-  const cv::Mat& left = frame.left;
-  const cv::Mat& right = frame.right;
   std::vector<cv::Point2f> existing_left, existing_right;
   for (const Track& t : existing) {
     existing_left.push_back(to_cv(t.match.left_px));
     existing_right.push_back(to_cv(t.match.right_px));
   }
   std::vector<cv::Point2f> corners_left =
-      eliminate_near_features(detect_corners(left, config_), existing_left, config_.elimination_distance_px);
+      eliminate_near_features(detect_corners(frame.left, config_), existing_left, config_.elimination_distance_px);
   std::vector<cv::Point2f> corners_right =
-      eliminate_near_features(detect_corners(right, config_), existing_right, config_.elimination_distance_px);
+      eliminate_near_features(detect_corners(frame.right, config_), existing_right, config_.elimination_distance_px);
   stats_.corners_left = static_cast<int>(corners_left.size());
   stats_.corners_right = static_cast<int>(corners_right.size());
-  const DescribedFeatures features_left = describe(left, &corners_left, rig_.cam0, config_);
-  const DescribedFeatures features_right = describe(right, &corners_right, rig_.cam1, config_);
+  const DescribedFeatures features_left = describe(frame.left, &corners_left, rig_.cam0, config_);
+  const DescribedFeatures features_right = describe(frame.right, &corners_right, rig_.cam1, config_);
   std::vector<Track> matched;
   for (const IndexPair& pair :
        match_stereo(features_left, features_right, rig_.T_C1_C0, rig_.cam1.focal_px(), config_)) {

@@ -11,10 +11,10 @@ namespace vilslam {
 
 struct StereoMatch {
   std::uint64_t track_id = 0;        // the same physical feature keeps its id while it is tracked
-  Eigen::Vector2d left_px;           // distorted pixel in cam0
-  Eigen::Vector2d right_px;          // distorted pixel in cam1
-  Eigen::Vector2d left_norm;         // undistorted normalized coordinates (x/z, y/z) in C0
-  Eigen::Vector2d right_norm;        // undistorted normalized coordinates in C1
+  Eigen::Vector2d left_px = Eigen::Vector2d::Zero();     // distorted pixel in cam0
+  Eigen::Vector2d right_px = Eigen::Vector2d::Zero();    // distorted pixel in cam1
+  Eigen::Vector2d left_norm = Eigen::Vector2d::Zero();   // undistorted normalized coordinates (x/z, y/z) in C0
+  Eigen::Vector2d right_norm = Eigen::Vector2d::Zero();  // undistorted normalized coordinates in C1
   int age_frames = 0;                // 0 when extracted in this pair
 };
 

@@ -97,7 +97,6 @@ DatasetWriter::DatasetWriter(const std::string& root, const RigCalibration& cali
 
 DatasetWriter::~DatasetWriter() {
   if (impl_ && !impl_->finished) {
-    impl_->imu_csv.close();
     std::error_code ec;
     fs::remove_all(impl_->partial, ec);
   }

@@ -30,11 +30,9 @@ void build_hallway(SceneBuilder& builder, double length_m) {
   // A rectilinear loop with corner notches (several turns), scaled so the rounded route has length_m.
   const double radius = 1.5;
   const double aspect = rng.uniform(1.2, 1.8);
-  Polygon2 loop = rectilinear_loop(rng, aspect, 1.0, 2, 0.22);
-  const double perimeter = 2 * (aspect + 1.0);
-  const double corner_loss = rounded_loop_length(loop, radius) - rounded_loop_length(loop, 0.0);
-  const double scale = (length_m - corner_loss) / perimeter;
-  for (auto& p : loop) p *= scale;
+  // Notches need room: at least 3.5 m between parallel corridors and 3 m for each rounded corner.
+  Polygon2 loop = rectilinear_loop(rng, aspect, 1.0, length_m >= 80 ? 2 : 0, 0.22);
+  scale_to_length(&loop, radius, length_m);
   add_corridor(builder, loop, true, style);
   builder.set_route(rounded_loop(loop, radius, kRouteStep, kSensorHeight));
 }

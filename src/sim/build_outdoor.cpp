@@ -12,7 +12,7 @@ namespace {
 constexpr double kSensorHeight = 1.5;
 constexpr double kRouteStep = 0.5;
 constexpr double kTurnRadius = 8.0;
-constexpr double kMargin = 60.0;  // ground beyond the route
+constexpr double kMargin = 40.0;  // ground beyond the route (past the buildings)
 
 struct Palette {
   int ground, road, marking, pole, lamp, trunk, car;
@@ -35,10 +35,6 @@ Palette make_palette(SceneBuilder& builder) {
   return p;
 }
 
-int pick(Rng& rng, const std::vector<int>& materials) {
-  return materials[rng.integer(0, static_cast<int>(materials.size()) - 1)];
-}
-
 // Adds the shape when it keeps clear_m from the route; returns whether it did.
 template <typename ShapeT>
 bool add_clear(SceneBuilder& builder, ShapeT shape, int material, double clear_m) {
@@ -54,17 +50,17 @@ void build_outdoor(SceneBuilder& builder, double length_m) {
   const Palette p = make_palette(builder);
   // Streets: a rectilinear loop around blocks, scaled to the length, on the plane z = slope * x.
   const double aspect = rng.uniform(1.2, 1.6);
-  Polygon2 loop = rectilinear_loop(rng, aspect, 1.0, 1, 0.3);
-  const double corner_loss = rounded_loop_length(loop, kTurnRadius) - rounded_loop_length(loop, 0.0);
-  const double scale = (length_m - corner_loss) / (2 * (aspect + 1.0));
-  for (auto& c : loop) c *= scale;
+  Polygon2 loop = rectilinear_loop(rng, aspect, 1.0, length_m >= 400 ? 1 : 0, 0.3);  // notch >= 2 turn radii
+  scale_to_length(&loop, kTurnRadius, length_m);
   const double slope = rng.uniform(0.02, 0.04);
   auto ground_z = [&](double x) { return slope * x; };
   std::vector<Vec3> route = rounded_loop(loop, kTurnRadius, kRouteStep, 0.0);
   for (Vec3& q : route) q.z() = ground_z(q.x()) + kSensorHeight;
   builder.set_route(route);
 
-  const Eigen::Vector2d lo(-kMargin, -kMargin), hi = Eigen::Vector2d(aspect, 1.0) * scale + Eigen::Vector2d(kMargin, kMargin);
+  Eigen::AlignedBox2d streets;
+  for (const auto& c : loop) streets.extend(c);
+  const Eigen::Vector2d lo = streets.min().array() - kMargin, hi = streets.max().array() + kMargin;
   const double stretch = std::sqrt(1 + slope * slope);  // ground uv u runs along the slope
   const Vec3 along_x = Vec3(1, 0, slope).normalized();
   Quad& ground = builder.add(Quad(Vec3(lo.x(), lo.y(), ground_z(lo.x())), along_x, (hi.x() - lo.x()) * stretch,
@@ -104,7 +100,7 @@ void build_outdoor(SceneBuilder& builder, double length_m) {
         const double base = ground_z(c.x()) - 0.5 * std::abs(slope) * (width + depth) - 0.2;
         const double top = ground_z(c.x()) + height;
         add_clear(builder, Box(Vec3(c.x(), c.y(), 0.5 * (base + top)), R, Vec3(0.5 * width, 0.5 * depth, 0.5 * (top - base))),
-                  pick(rng, p.facades), 6.0);
+                  rng.pick(p.facades), 6.0);
         s += width + rng.uniform(2, 8);
       }
       for (double s = rng.uniform(5, 20); s < len; s += rng.uniform(8, 14)) {
@@ -122,7 +118,7 @@ void build_outdoor(SceneBuilder& builder, double length_m) {
         } else if (kind < 0.8) {  // tree: trunk and two crown tiers
           const double trunk_top = z0 + rng.uniform(2.4, 3.2), crown = rng.uniform(1.4, 2.2);
           if (!add_clear(builder, Cylinder(c, z0 - 0.2, trunk_top, rng.uniform(0.12, 0.22)), p.trunk, 1.5)) continue;
-          const int leaves = pick(rng, p.foliage);
+          const int leaves = rng.pick(p.foliage);
           add_clear(builder, Cylinder(c, trunk_top - 0.3, trunk_top + 2.0, crown), leaves, 1.0);
           add_clear(builder, Cylinder(c, trunk_top + 2.0, trunk_top + 3.2, 0.6 * crown), leaves, 1.0);
         } else {  // parked car

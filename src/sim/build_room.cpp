@@ -58,11 +58,12 @@ void build_room(SceneBuilder& builder, double length_m) {
   const int poster = builder.material(K::kPoster, 0.5f, 0.7f);
   std::vector<int> clutter;
   for (int k = 0; k < 4; ++k) clutter.push_back(builder.material(K::kClutter, rng.uniform(0.3f, 0.7f), 0.4f));
-  auto any_clutter = [&]() { return clutter[rng.integer(0, static_cast<int>(clutter.size()) - 1)]; };
 
-  // One lap of about length_m, as large as the room allows.
-  const double nominal = M_PI * (3 * 4.2 - std::sqrt((3 * 1.8 + 2.4) * (1.8 + 3 * 2.4)));  // Ramanujan's perimeter
-  const double scale = std::min(length_m / nominal, 1.2);
+  // One lap of length_m: the ellipse is scaled until its length (height changes included) matches.
+  double scale = 1.0;
+  for (int k = 0; k < 4; ++k) {
+    scale = std::min(scale * length_m / polyline_length(elliptic_loop(1.8 * scale, 2.4 * scale, 0.25)), 1.25);
+  }
   builder.set_route(elliptic_loop(1.8 * scale, 2.4 * scale, 0.25));
 
   const Enclosure walls = add_enclosure(builder, kRoom, Walls{floor, ceiling, wall});
@@ -71,7 +72,7 @@ void build_room(SceneBuilder& builder, double length_m) {
   const Vec3 dirs[4] = {Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitX(), -Vec3::UnitY()};
   for (int k = 0; k < 4; ++k) {
     const double length = (k % 2 == 0) ? kRoom.sizes().x() : kRoom.sizes().y();
-    dress_wall(builder, *walls.walls[k], starts[k], dirs[k], length, poster, any_clutter(), k != 3);
+    dress_wall(builder, *walls.walls[k], starts[k], dirs[k], length, poster, rng.pick(clutter), k != 3);
   }
   // Floor clutter: low mats and boxes in the middle, taller boxes and stands along the walls.
   for (int k = 0; k < 6; ++k) {
@@ -79,7 +80,7 @@ void build_room(SceneBuilder& builder, double length_m) {
     const double w = rng.uniform(0.5, 1.5), d = rng.uniform(0.5, 1.5), h = rng.uniform(0.05, 0.35);
     builder.add(Box(c + Vec3(0, 0, 0.5 * h), Eigen::AngleAxisd(rng.uniform(0, M_PI), Vec3::UnitZ()).toRotationMatrix(),
                     Vec3(0.5 * w, 0.5 * d, 0.5 * h)),
-                any_clutter());
+                rng.pick(clutter));
   }
   for (int k = 0; k < 10; ++k) {
     const double w = rng.uniform(0.3, 0.7), h = rng.uniform(0.3, 1.5);
@@ -87,15 +88,15 @@ void build_room(SceneBuilder& builder, double length_m) {
     const double along = rng.uniform(0.6, (side % 2 == 0 ? kRoom.sizes().x() : kRoom.sizes().y()) - 0.6);
     const Vec3 inward = Vec3::UnitZ().cross(dirs[side]);
     const Vec3 c = starts[side] + along * dirs[side] + (0.5 * w + 0.05) * inward + Vec3(0, 0, 0.5 * h);
-    builder.add(Box(c, Mat3::Identity(), Vec3(0.5 * w, 0.5 * w, 0.5 * h)), any_clutter());
+    builder.add(Box(c, Mat3::Identity(), Vec3(0.5 * w, 0.5 * w, 0.5 * h)), rng.pick(clutter));
   }
   for (const Eigen::Vector2d corner : {Eigen::Vector2d(hi.x() - 0.5, lo.y() + 0.5), Eigen::Vector2d(hi.x() - 0.5, hi.y() - 0.5),
                                        Eigen::Vector2d(lo.x() + 0.5, hi.y() - 0.5)}) {
-    builder.add(Cylinder(corner, 0.0, rng.uniform(1.2, 2.5), rng.uniform(0.15, 0.3)), any_clutter());
+    builder.add(Cylinder(corner, 0.0, rng.uniform(1.2, 2.5), rng.uniform(0.15, 0.3)), rng.pick(clutter));
   }
   // Two ceiling beams across the room.
   for (const double y : {-0.8, 2.2}) {
-    builder.add(Box::axis_aligned(Vec3(lo.x(), y - 0.15, 3.6), Vec3(hi.x(), y + 0.15, 3.85)), any_clutter());
+    builder.add(Box::axis_aligned(Vec3(lo.x(), y - 0.15, 3.6), Vec3(hi.x(), y + 0.15, 3.85)), rng.pick(clutter));
   }
 }
 

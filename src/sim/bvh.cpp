@@ -6,7 +6,7 @@ namespace vilslam::sim {
 namespace {
 
 constexpr int kBins = 16;
-constexpr int kMaxLeafSize = 4;
+constexpr int kMaxLeafSize = 2;
 constexpr int kMaxDepth = 40;  // the traversal stacks hold 64 entries
 
 double half_area(const Eigen::AlignedBox3d& box) {

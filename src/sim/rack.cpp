@@ -12,10 +12,6 @@ constexpr double kBay = 2.7;
 constexpr double kUpright = 0.09;
 constexpr double kDeck = 0.08;
 
-int pick(Rng& rng, const std::vector<int>& materials) {
-  return materials[rng.integer(0, static_cast<int>(materials.size()) - 1)];
-}
-
 // Boxes standing side by side on a shelf from x0 to x1 at height z, between y0 and y1, under z_top.
 void stock_shelf(SceneBuilder& builder, const RackStyle& style, double x0, double x1, double y0, double y1, double z,
                  double z_top) {
@@ -28,7 +24,7 @@ void stock_shelf(SceneBuilder& builder, const RackStyle& style, double x0, doubl
     const double d = std::min(rng.uniform(0.6, 1.0), y1 - y0 - 0.05);
     const double h = rng.uniform(0.3, std::max(0.35, z_top - z - 0.15));
     const double y_mid = 0.5 * (y0 + y1) + rng.uniform(-0.03, 0.03);
-    builder.add(Box::axis_aligned(Vec3(x, y_mid - 0.5 * d, z), Vec3(x + w, y_mid + 0.5 * d, z + h)), pick(rng, style.goods));
+    builder.add(Box::axis_aligned(Vec3(x, y_mid - 0.5 * d, z), Vec3(x + w, y_mid + 0.5 * d, z + h)), rng.pick(style.goods));
     x += w + rng.uniform(0.05, 0.4);
   }
 }
@@ -64,7 +60,7 @@ void add_floor_clutter(SceneBuilder& builder, const Eigen::AlignedBox2d& area, i
   Rng& rng = builder.rng();
   for (int k = 0; k < count; ++k) {
     const Eigen::Vector2d c(rng.uniform(area.min().x(), area.max().x()), rng.uniform(area.min().y(), area.max().y()));
-    const int material = pick(rng, materials);
+    const int material = rng.pick(materials);
     if (rng.chance(0.3)) {
       const double r = rng.uniform(0.25, 0.35);
       const Cylinder barrel(c, 0.0, rng.uniform(0.8, 1.0), r);
@@ -82,7 +78,7 @@ void add_floor_clutter(SceneBuilder& builder, const Eigen::AlignedBox2d& area, i
     for (int l = 0; l < layers; ++l) {
       const double h = rng.uniform(0.3, 0.7);
       const Vec3 box_half(half.x() * rng.uniform(0.7, 1.0), half.y() * rng.uniform(0.7, 1.0), 0.5 * h);
-      builder.add(Box(Vec3(c.x(), c.y(), z + 0.5 * h), R, box_half), pick(rng, materials));
+      builder.add(Box(Vec3(c.x(), c.y(), z + 0.5 * h), R, box_half), rng.pick(materials));
       z += h;
     }
   }

@@ -3,6 +3,7 @@
 // not portable across standard libraries, so draws are computed here and are bit-identical everywhere.
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 namespace vilslam::sim {
 
@@ -22,6 +23,11 @@ class Rng {
     return lo + static_cast<int>(next() % static_cast<std::uint64_t>(hi - lo + 1));
   }
   bool chance(double p) { return uniform() < p; }
+  // One of the items, uniformly.
+  template <typename T>
+  const T& pick(const std::vector<T>& items) {
+    return items[static_cast<std::size_t>(integer(0, static_cast<int>(items.size()) - 1))];
+  }
   // Standard normal draw (Box-Muller).
   double gaussian() {
     const double u1 = 1.0 - uniform(), u2 = uniform();

@@ -77,22 +77,17 @@ double rounded_loop_length(const Polygon2& corners, double radius_m) {
   return length;
 }
 
+void scale_to_length(Polygon2* corners, double radius_m, double length_m) {
+  // Rounding takes a fixed length per corner, independent of the scale.
+  const double corner_loss = rounded_loop_length(*corners, radius_m) - rounded_loop_length(*corners, 0.0);
+  const double scale = (length_m - corner_loss) / rounded_loop_length(*corners, 0.0);
+  for (auto& c : *corners) c *= scale;
+}
+
 double polyline_length(const std::vector<Vec3>& points) {
   double length = 0;
   for (std::size_t i = 1; i < points.size(); ++i) length += (points[i] - points[i - 1]).norm();
   return length;
-}
-
-double distance_xy_to_polyline(const std::vector<Vec3>& points, const Eigen::Vector2d& p) {
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 1; i < points.size(); ++i) {
-    const Eigen::Vector2d a = points[i - 1].head<2>(), b = points[i].head<2>();
-    const Eigen::Vector2d ab = b - a;
-    const double len2 = ab.squaredNorm();
-    const double s = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-    best = std::min(best, (a + s * ab - p).norm());
-  }
-  return best;
 }
 
 double route_clearance(const std::vector<Vec3>& route_W, const Shape& shape) {

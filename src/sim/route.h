@@ -19,11 +19,11 @@ std::vector<Vec3> rounded_loop(const Polygon2& corners, double radius_m, double 
 // Length of the rounded loop: perimeter minus, per corner of turning angle a, 2 r tan(a/2) - r a.
 double rounded_loop_length(const Polygon2& corners, double radius_m);
 
+// Scales the polygon about the origin so that its rounded loop has length_m.
+void scale_to_length(Polygon2* corners, double radius_m, double length_m);
+
 // Length of a polyline.
 double polyline_length(const std::vector<Vec3>& points);
-
-// Horizontal distance from p to the polyline (route clearance checks while placing clutter).
-double distance_xy_to_polyline(const std::vector<Vec3>& points, const Eigen::Vector2d& p);
 
 // Smallest distance from the route's waypoints to the shape (waypoints are ~0.5 m apart).
 double route_clearance(const std::vector<Vec3>& route_W, const Shape& shape);

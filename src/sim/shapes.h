@@ -50,7 +50,6 @@ class Shape {
   // True when p is inside the solid or on its boundary (within 1e-6 m): surface points there are hidden.
   virtual bool contains(const Vec3& p) const = 0;
   virtual Eigen::AlignedBox3d bounds() const = 0;
-  virtual int num_faces() const = 0;
   // Points on every face, about spacing_m apart (cell centres of a regular grid per face).
   virtual void sample(double spacing_m, std::vector<SurfacePoint>* out) const = 0;
 
@@ -73,7 +72,6 @@ class Box : public Shape {
   double distance(const Vec3& p) const override;
   bool contains(const Vec3& p) const override;
   Eigen::AlignedBox3d bounds() const override;
-  int num_faces() const override { return 6; }
   void sample(double spacing_m, std::vector<SurfacePoint>* out) const override;
 
  private:
@@ -91,7 +89,6 @@ class Cylinder : public Shape {
   double distance(const Vec3& p) const override;
   bool contains(const Vec3& p) const override;
   Eigen::AlignedBox3d bounds() const override;
-  int num_faces() const override { return 3; }
   void sample(double spacing_m, std::vector<SurfacePoint>* out) const override;
 
  private:
@@ -109,7 +106,6 @@ class Quad : public Shape {
   double distance(const Vec3& p) const override;
   bool contains(const Vec3& p) const override;
   Eigen::AlignedBox3d bounds() const override;
-  int num_faces() const override { return 1; }
   void sample(double spacing_m, std::vector<SurfacePoint>* out) const override;
 
  private:
@@ -129,7 +125,6 @@ class ArchedTube : public Shape {
   double distance(const Vec3& p) const override;
   bool contains(const Vec3&) const override { return false; }
   Eigen::AlignedBox3d bounds() const override;
-  int num_faces() const override { return 4; }
   void sample(double spacing_m, std::vector<SurfacePoint>* out) const override;
   double floor_half_width() const;
 

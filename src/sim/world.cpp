@@ -47,7 +47,30 @@ double preset_length_m(Scenario scenario) {
   return 0;
 }
 
+namespace {
+
+// Route lengths each generator can build (shorter ones would not fit its corridors, racks or turns; the
+// room's route must stay inside the room).
+std::pair<double, double> length_range_m(Scenario scenario) {
+  switch (scenario) {
+    case Scenario::kHighbay: return {40, 5000};
+    case Scenario::kHallway: return {20, 5000};
+    case Scenario::kTunnel: return {20, 5000};
+    case Scenario::kLoop: return {160, 5000};
+    case Scenario::kOutdoor: return {100, 5000};
+    case Scenario::kRoom: return {8, 16.5};
+  }
+  return {0, 0};
+}
+
+}  // namespace
+
 World World::generate(Scenario scenario, std::uint64_t seed, double target_length_m) {
+  const auto [lo, hi] = length_range_m(scenario);
+  if (!(target_length_m == 0 || (target_length_m >= lo && target_length_m <= hi))) {
+    throw std::invalid_argument("target length for " + scenario_name(scenario) + " must be 0 (the preset) or within [" +
+                                std::to_string(lo) + ", " + std::to_string(hi) + "] m");
+  }
   const double length_m = target_length_m > 0 ? target_length_m : preset_length_m(scenario);
   SceneBuilder builder(seed);
   switch (scenario) {

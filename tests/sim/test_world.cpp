@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "sim/route.h"
@@ -44,9 +45,26 @@ TEST_P(WorldTest, RouteIsClosedClearAndOfThePresetLength) {
 }
 
 TEST_P(WorldTest, TargetLengthOverridesThePreset) {
-  const double target = GetParam() == Scenario::kRoom ? 10.0 : 150.0;
+  const double target = GetParam() == Scenario::kRoom ? 10.0 : 200.0;
   const World world = World::generate(GetParam(), 3, target);
   EXPECT_NEAR(polyline_length(world.route_W()), target, 0.05 * target);
+}
+
+TEST_P(WorldTest, ShortestAllowedRouteIsStillClosedAndClear) {
+  const std::map<Scenario, double> shortest = {{Scenario::kHighbay, 40},  {Scenario::kHallway, 20},
+                                               {Scenario::kTunnel, 20},   {Scenario::kLoop, 160},
+                                               {Scenario::kOutdoor, 100}, {Scenario::kRoom, 8}};
+  const double length = shortest.at(GetParam());
+  EXPECT_THROW(World::generate(GetParam(), 1, 0.9 * length), std::invalid_argument);
+  EXPECT_THROW(World::generate(GetParam(), 1, -1.0), std::invalid_argument);
+  for (const std::uint64_t seed : {1, 2, 3}) {
+    const World world = World::generate(GetParam(), seed, length);
+    const auto& route = world.route_W();
+    EXPECT_NEAR(polyline_length(route), length, 0.05 * length);
+    for (std::size_t i = 1; i < route.size(); ++i) {
+      ASSERT_GE(world.distance_to_surface(0.5 * (route[i] + route[i - 1])), 0.5) << "seed " << seed << " at " << i;
+    }
+  }
 }
 
 TEST_P(WorldTest, GenerationIsDeterministicPerSeed) {
