@@ -39,7 +39,7 @@ void Vio::add_frame(const FrontendOutput& frame) {
   if (!initialized()) {
     const Initialization init = static_initialization(imu_, frame.t_ns, config_.initializer);
     Vec15 sigma;
-    sigma << Vec3::Constant(config_.prior_rotation_sigma_rad), Vec3::Constant(config_.prior_position_sigma_m),
+    sigma << Vec3::Constant(init.is_static ? config_.prior_rotation_sigma_rad : config_.moving_rotation_sigma_rad), Vec3::Constant(config_.prior_position_sigma_m),
         Vec3::Constant(init.is_static ? config_.prior_velocity_sigma_m_s : config_.moving_velocity_sigma_m_s),
         Vec3::Constant(config_.prior_gyro_bias_sigma_rad_s), Vec3::Constant(config_.prior_accel_bias_sigma_m_s2);
     smoother_.initialize(init.state, sigma, frame);
