@@ -101,6 +101,8 @@ TEST(Simulate, EurocFlightKeepsTheRealImuTimestamps) {
 TEST(Simulate, BadInputExitsWithCode2) {
   const fs::path dir = test::temp_dir();
   EXPECT_EQ(test::run_cli("simulate nowhere --out " + (dir / "x").string()).exit_code, 2);
+  EXPECT_EQ(test::run_cli("simulate highbay --duration 3 --out " + (dir / "x").string()).exit_code, 2);
+  EXPECT_EQ(test::run_cli("simulate highbay --imu /nonexistent.csv --out " + (dir / "x").string()).exit_code, 2);
   EXPECT_EQ(test::run_cli("simulate room --trajectory /nonexistent.tum --out " + (dir / "x").string()).exit_code, 2);
   const fs::path bad = dir / "bad.tum";
   std::ofstream(bad) << "0.0 0 0 0 0 0 0 1\nnot a pose\n";
