@@ -101,35 +101,34 @@ double cost_at(const Correspondences& c, const SE3& T_W_L, const RegistrationCon
   return cost;
 }
 
-// Levenberg-Marquardt on fixed correspondences; returns the last step taken (zero when none was accepted).
-Vec6 levenberg_marquardt(const Correspondences& c, SE3& T_W_L, const Mat6& remap, const RegistrationConfig& config) {
+bool is_small(const Vec6& delta, const RegistrationConfig& config) {
+  return delta.head<3>().norm() < config.converged_translation_m &&
+         delta.tail<3>().norm() < config.converged_rotation_rad;
+}
+
+// Levenberg-Marquardt on fixed correspondences, until a step is small or none lowers the cost.
+void levenberg_marquardt(const Correspondences& c, SE3& T_W_L, const Mat6& remap, const RegistrationConfig& config) {
   double lambda = 1e-4;
-  Vec6 last_step = Vec6::Zero();
   for (int it = 0; it < config.max_inner_iterations; ++it) {
     const LinearSystem sys = build_system(c, T_W_L, config);
     bool accepted = false;
+    Vec6 step = Vec6::Zero();
     for (int attempt = 0; attempt < 8 && !accepted; ++attempt) {
       Mat6 damped = sys.H;
       damped.diagonal() += lambda * sys.H.diagonal().cwiseMax(1e-9);
       // Zhang et al. 2016 solution remapping: the update moves only along well-conditioned directions.
-      const Vec6 step = remap * damped.ldlt().solve(-sys.g);
+      step = remap * damped.ldlt().solve(-sys.g);
       const SE3 candidate = T_W_L * SE3::exp(step);
       if (cost_at(c, candidate, config) < sys.cost) {
         T_W_L = candidate;
-        last_step = step;
         lambda = std::max(lambda / 10.0, 1e-7);
         accepted = true;
       } else {
         lambda *= 10.0;
       }
     }
-    if (!accepted) break;
-    if (last_step.head<3>().norm() < config.converged_translation_m &&
-        last_step.tail<3>().norm() < config.converged_rotation_rad) {
-      break;
-    }
+    if (!accepted || is_small(step, config)) break;
   }
-  return last_step;
 }
 
 std::vector<Vec3> positions(const std::vector<FeaturePoint>& points, double leaf_m) {
@@ -158,10 +157,11 @@ RegistrationResult register_scan(const FeatureScan& features_L, const FeatureMap
       const LinearSystem sys = build_system(c, result.T_W_L, config);
       remap = analyze_degeneracy(sys.H, degeneracy_threshold(sys, config)).well_conditioned_projection;
     }
-    const Vec6 step = levenberg_marquardt(c, result.T_W_L, remap, config);
+    const SE3 before = result.T_W_L;
+    levenberg_marquardt(c, result.T_W_L, remap, config);
     result.outer_iterations = outer + 1;
-    if (step.head<3>().norm() < config.converged_translation_m &&
-        step.tail<3>().norm() < config.converged_rotation_rad) {
+    // Converged when re-associating no longer moves the pose.
+    if (is_small((before.inverse() * result.T_W_L).log(), config)) {
       result.converged = true;
       break;
     }

@@ -14,8 +14,9 @@ struct RegistrationConfig {
   AssociationConfig association;
   int max_outer_iterations = 10;  // each re-associates correspondences
   int max_inner_iterations = 4;   // LM steps per association
-  double converged_translation_m = 1e-4;
-  double converged_rotation_rad = 1e-5;
+  // Pose change below which an iteration has converged (LOAM uses 0.05 cm and 0.05 deg).
+  double converged_translation_m = 5e-4;
+  double converged_rotation_rad = 8.7e-4;
   RobustLoss loss = RobustLoss::kCauchy;
   double loss_scale_m = 0.1;
   double source_edge_leaf_m = 0.2;     // the scan's features are voxel-downsampled before matching

@@ -76,9 +76,9 @@ void KittiWriter::finish() const {
   write_text(fs::path(dir_) / "poses.txt", poses);
   const double baseline_m = calib_.T_C0_C1().translation().norm();
   const Mat4 P0 = projection(calib_.cam0, 0), P1 = projection(calib_.cam1, baseline_m);
-  const Mat4 Tr = (calib_.T_I_C0.inverse() * calib_.T_I_L).matrix();
   write_text(fs::path(dir_) / "calib.txt", "P0: " + row_3x4(P0) + "\nP1: " + row_3x4(P1) + "\nP2: " + row_3x4(P0) +
-                                               "\nP3: " + row_3x4(P1) + "\nTr: " + row_3x4(Tr) + "\n");
+                                               "\nP3: " + row_3x4(P1) + "\nTr: " + row_3x4(Mat4::Identity()) +
+                                               "\n");
 }
 
 }  // namespace vilslam::sim

@@ -3,7 +3,10 @@
 //   velodyne/NNNNNN.bin  float32 x y z reflectance per point, in L at the point's own instant
 //   times.txt            seconds since the first sweep, one line per sweep
 //   poses.txt            T_L0_Lk (3x4 row-major) of each sweep's start, in the first sweep's LiDAR frame
-//   calib.txt            P0..P3 (rectified cam0/cam1 projections; P2/P3 repeat them) and Tr = T_C0_L
+//   calib.txt            P0..P3 (the stereo intrinsics and baseline; P2/P3 repeat P0/P1) and Tr = identity:
+//                        the folder's reference frame is L, so that poses, scans and Tr agree for LiDAR
+//                        tools (they map poses by Tr^-1 P Tr) and for open_dataset. The true camera-LiDAR
+//                        extrinsics are in the dataset's rig.yaml.
 #include <string>
 #include <vector>
 

@@ -38,7 +38,7 @@ struct SimConfig {
   TimeNs start_time_ns = 1'000'000'000;        // timestamp of the first sample
 
   FaultConfig faults;
-  double preview_duration_s = 3.0;
+  double preview_duration_s = 1.5;
   double model_spacing_m = 0.05;               // reference model point spacing
   int parallel_batch = 16;                     // frames rendered in parallel before being written in order
 };

@@ -18,7 +18,8 @@ struct SequenceReport {
   std::size_t lidar_scans = 0;
   std::size_t groundtruth_states = 0;
   double mean_corners_per_frame = 0;       // Shi-Tomasi corners in the left images
-  double mean_lidar_information_ratio = 0; // smallest / largest eigenvalue of the scans' ICP information
+  double mean_lidar_information_ratio = 0; // min/max eigenvalue of each sweep's point-to-plane information
+                                           // (analyze_scan_degeneracy at the sweep start), averaged
 };
 
 // Shi-Tomasi corners (cv::goodFeaturesToTrack) of an 8-bit grey image.

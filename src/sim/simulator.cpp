@@ -1,5 +1,6 @@
 #include "sim/simulator.h"
 
+#include <spdlog/spdlog.h>
 #include <tbb/parallel_for.h>
 
 #include <cmath>
@@ -7,12 +8,12 @@
 #include <memory>
 
 #include "common/error.h"
-#include <spdlog/spdlog.h>
 #include "io/dataset_writer.h"
 #include "io/euroc_tables.h"
 #include "io/trajectory_io.h"
 #include "sim/kitti_writer.h"
 #include "sim/lidar_sim.h"
+#include "sim/scan_degeneracy.h"
 
 namespace vilslam::sim {
 namespace {
@@ -37,6 +38,9 @@ struct Scene {
 // the configured speed (or at the speed that makes it last request.duration_s).
 Scene make_scene(const SimConfig& config, const SimulateRequest& request) {
   RouteMotionConfig motion_config = route_motion_config(config, request.scenario);
+  const double min_duration_s = motion_config.rest_start_s + motion_config.rest_end_s + motion_config.ramp_s;
+  if (request.duration_s > 0 && request.duration_s <= min_duration_s)
+    throw InputError("--duration", "must exceed the rests and speed ramps (" + std::to_string(min_duration_s) + " s)");
   double length_m = request.length_m;
   if (request.duration_s > 0 && length_m <= 0)
     length_m = motion_config.cruise_speed_m_s *
@@ -66,18 +70,23 @@ struct ImuStream {
 // The IMU and the ground truth at its timestamps: simulated, or a real stream restricted to the motion.
 ImuStream make_imu(const SimConfig& config, const SimulateRequest& request, const BodyMotion& motion) {
   ImuStream out;
-  TimeNs t1 = motion.end_ns();
-  if (request.preview) t1 = std::min(t1, motion.start_ns() + s_to_ns(config.preview_duration_s));
+  // A preview of a route skips the initial rest: it starts at rest and sets off.
+  TimeNs t0 = motion.start_ns(), t1 = motion.end_ns();
+  if (request.preview) {
+    if (request.trajectory_path.empty())
+      t0 += s_to_ns(route_motion_config(config, request.scenario).rest_start_s);
+    t1 = std::min(t1, t0 + s_to_ns(config.preview_duration_s));
+  }
   if (request.imu_path.empty()) {
     ImuSimConfig imu = config.imu;
     imu.seed = mix_seed(request.seed, 3, 0);
-    ImuSimulation sim = simulate_imu(motion, imu, motion.start_ns(), t1);
+    ImuSimulation sim = simulate_imu(motion, imu, t0, t1);
     out.samples = std::move(sim.samples);
     out.groundtruth = std::move(sim.groundtruth);
   } else {
     std::vector<TimeNs> stamps;
     for (const ImuSample& s : read_imu_csv(request.imu_path)) {
-      if (s.t_ns < motion.start_ns() || s.t_ns > t1) continue;
+      if (s.t_ns < t0 || s.t_ns > t1) continue;
       out.samples.push_back(s);
       stamps.push_back(s.t_ns);
     }
@@ -149,17 +158,22 @@ void write_scans(const SimConfig& config, const SimulateRequest& request, const 
                                 : 0;
   const TimeNs offset_ns = s_to_ns(config.faults.lidar_time_offset_s);
   const auto T_W_L = [&](TimeNs t) { return scene.motion->pose(t) * calib.T_I_L; };
+  double ratio_sum = 0;
   for (std::size_t first = 0; first < count; first += config.parallel_batch) {
     const std::size_t n = std::min<std::size_t>(config.parallel_batch, count - first);
     std::vector<LidarScan> scans(n);
     std::vector<char> dropped(n, 0);
+    std::vector<double> ratios(n, 0.0);
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
       const TimeNs t_ns = imu.t0_ns + static_cast<TimeNs>(first + i) * period_ns;
       dropped[i] = in_fault(config.faults.lidar_dropouts, t_ns - imu.t0_ns);
-      if (!dropped[i]) scans[i] = simulate_sweep(scene.world, config.lidar, t_ns, T_W_L, mix_seed(request.seed, 4, first + i));
+      if (dropped[i]) return;
+      scans[i] = simulate_sweep(scene.world, config.lidar, t_ns, T_W_L, mix_seed(request.seed, 4, first + i));
+      if (request.report) ratios[i] = analyze_scan_degeneracy(scene.world, config.lidar, T_W_L(t_ns)).min_max_ratio;
     });
     for (std::size_t i = 0; i < n; ++i) {
       if (dropped[i]) continue;
+      ratio_sum += ratios[i];
       const SE3 pose = T_W_L(scans[i].t_ns);
       scans[i].t_ns += offset_ns;
       writer.add_lidar(scans[i]);
@@ -167,6 +181,7 @@ void write_scans(const SimConfig& config, const SimulateRequest& request, const 
       ++report.lidar_scans;
     }
   }
+  report.mean_lidar_information_ratio = report.lidar_scans > 0 ? ratio_sum / report.lidar_scans : 0;
 }
 
 void remove_if_exists(const fs::path& p) {

@@ -8,6 +8,7 @@ namespace vilslam {
 LinearFactor make_linear_factor(std::vector<int> slots, const Eigen::MatrixXd& J, const Eigen::VectorXd& r) {
   LinearFactor f;
   f.slots = std::move(slots);
+  f.block_dim = static_cast<int>(J.cols() / static_cast<int>(f.slots.size()));
   f.H = J.transpose() * J;
   f.g = J.transpose() * r;
   f.cost = r.squaredNorm();
@@ -16,13 +17,11 @@ LinearFactor make_linear_factor(std::vector<int> slots, const Eigen::MatrixXd& J
 
 void accumulate(const LinearFactor& f, Eigen::MatrixXd& H, Eigen::VectorXd& g) {
   const int k = static_cast<int>(f.slots.size());
+  const int d = f.block_dim;
   for (int a = 0; a < k; ++a) {
     const int ra = kStateDim * f.slots[a];
-    g.segment<kStateDim>(ra) += f.g.segment<kStateDim>(kStateDim * a);
-    for (int b = 0; b < k; ++b) {
-      H.block<kStateDim, kStateDim>(ra, kStateDim * f.slots[b]) +=
-          f.H.block<kStateDim, kStateDim>(kStateDim * a, kStateDim * b);
-    }
+    g.segment(ra, d) += f.g.segment(d * a, d);
+    for (int b = 0; b < k; ++b) H.block(ra, kStateDim * f.slots[b], d, d) += f.H.block(d * a, d * b, d, d);
   }
 }
 

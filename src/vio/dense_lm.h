@@ -12,12 +12,13 @@ namespace vilslam {
 
 struct LinearFactor {
   std::vector<int> slots;  // window positions of the states touched, in the order of the blocks below
-  Eigen::MatrixXd H;       // J^T J, (15 k) x (15 k)
+  int block_dim = kStateDim;  // each block covers a state's first block_dim tangent coordinates
+  Eigen::MatrixXd H;       // J^T J, (block_dim k) x (block_dim k)
   Eigen::VectorXd g;       // J^T r
   double cost = 0;         // ||r||^2
 };
 
-// The factor of a whitened residual r with Jacobian J = [J_slot0, J_slot1, ...] (each r.size() x 15).
+// The factor of a whitened residual r with Jacobian J = [J_slot0, J_slot1, ...], equal-width blocks.
 LinearFactor make_linear_factor(std::vector<int> slots, const Eigen::MatrixXd& J, const Eigen::VectorXd& r);
 // Adds the factor's blocks into the window's normal equations H dx = -g.
 void accumulate(const LinearFactor& f, Eigen::MatrixXd& H, Eigen::VectorXd& g);

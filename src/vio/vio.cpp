@@ -1,6 +1,7 @@
 #include "vio/vio.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "common/error.h"
 
@@ -9,12 +10,20 @@ namespace {
 
 constexpr const char* kSource = "vio input";
 
+// cam0's focal length, which converts the pixel noise into normalized coordinates.
+double checked_focal_px(const RigCalibration& calib) {
+  if (!(calib.cam0.fx > 0) || !std::isfinite(calib.cam0.fx)) {
+    throw InputError("calibration", "cam0 focal length must be positive for the VIO's pixel noise");
+  }
+  return calib.cam0.fx;
+}
+
 }  // namespace
 
 Vio::Vio(const RigCalibration& calib, const VioConfig& config)
     : config_(config),
       calib_(calib),
-      smoother_(config.smoother, {calib.T_I_C0, calib.T_I_C1}, calib.imu, calib.cam0.fx),
+      smoother_(config.smoother, {calib.T_I_C0, calib.T_I_C1}, calib.imu, checked_focal_px(calib)),
       propagator_(calib.imu, Vec3(0, 0, -config.smoother.gravity_m_s2)) {}
 
 void Vio::add_imu(const ImuSample& sample) {
@@ -39,7 +48,7 @@ void Vio::add_frame(const FrontendOutput& frame) {
   if (!initialized()) {
     const Initialization init = static_initialization(imu_, frame.t_ns, config_.initializer);
     Vec15 sigma;
-    sigma << Vec3::Constant(config_.prior_rotation_sigma_rad), Vec3::Constant(config_.prior_position_sigma_m),
+    sigma << Vec3::Constant(init.is_static ? config_.prior_rotation_sigma_rad : config_.moving_rotation_sigma_rad), Vec3::Constant(config_.prior_position_sigma_m),
         Vec3::Constant(init.is_static ? config_.prior_velocity_sigma_m_s : config_.moving_velocity_sigma_m_s),
         Vec3::Constant(config_.prior_gyro_bias_sigma_rad_s), Vec3::Constant(config_.prior_accel_bias_sigma_m_s2);
     smoother_.initialize(init.state, sigma, frame);

@@ -18,9 +18,10 @@ struct VioConfig {
   SmootherConfig smoother;
   InitializerConfig initializer;
   // Standard deviations of the first state's prior: rotation (rad), position (m), velocity (m/s),
-  // gyro bias (rad/s), accel bias (m/s^2). Yaw and position are a gauge choice; a moving start gets a
-  // wider velocity prior (moving_velocity_sigma_m_s).
+  // gyro bias (rad/s), accel bias (m/s^2). Yaw and position are a gauge choice; a moving start gets
+  // wider rotation and velocity priors (the averaged specific force then includes the acceleration).
   double prior_rotation_sigma_rad = 0.02;
+  double moving_rotation_sigma_rad = 0.1;
   double prior_position_sigma_m = 1e-3;
   double prior_velocity_sigma_m_s = 0.05;
   double moving_velocity_sigma_m_s = 1.0;
@@ -44,6 +45,7 @@ struct VioImuOutput {
 
 class Vio {
  public:
+  // Throws InputError when cam0 has no positive focal length.
   explicit Vio(const RigCalibration& calib, const VioConfig& config = {});
 
   // Samples must arrive in strictly increasing time; feed every sample up to a frame's time before it.

@@ -8,6 +8,8 @@ namespace vilslam {
 namespace {
 
 constexpr double kMinDepth_m = 0.05;
+constexpr int kPoseDim = 6;  // [dphi, dp]: the first six tangent coordinates of a state
+static_assert(kRot == 0 && kPos == 3, "the vision factor's blocks are the leading rotation and position");
 
 // Camera c's pose in W for a state.
 SE3 camera_in_world(const NavState& x, const SE3& T_I_C) { return x.T_W_I() * T_I_C; }
@@ -52,7 +54,7 @@ LandmarkLinearization linearize_landmark(const std::vector<StereoObservation>& o
   const int m = static_cast<int>(obs.size());
   LandmarkLinearization lin;
   lin.b.resize(4 * m);
-  lin.F.setZero(4 * m, kStateDim * m);
+  lin.F.setZero(4 * m, kPoseDim * m);
   lin.E.resize(4 * m, 3);
   for (int k = 0; k < m; ++k) {
     const NavState& x = states[obs[k].slot];
@@ -68,8 +70,8 @@ LandmarkLinearization linearize_landmark(const std::vector<StereoObservation>& o
       lin.b.segment<2>(row) = (z - p_C.head<2>() / p_C.z()) / sigma_norm;
       const Eigen::Matrix<double, 2, 3> dr_dpC = -projection_jacobian(p_C) / sigma_norm;
       // p_I = R^T (x_W - p): d/dphi = [p_I]x, d/dp = -R^T, d/dx_W = R^T.
-      lin.F.block<2, 3>(row, kStateDim * k + kRot) = dr_dpC * R_C_I * so3::hat(p_I);
-      lin.F.block<2, 3>(row, kStateDim * k + kPos) = -dr_dpC * R_C_I * Rt;
+      lin.F.block<2, 3>(row, kPoseDim * k + kRot) = dr_dpC * R_C_I * so3::hat(p_I);
+      lin.F.block<2, 3>(row, kPoseDim * k + kPos) = -dr_dpC * R_C_I * Rt;
       lin.E.block<2, 3>(row, 0) = dr_dpC * R_C_I * Rt;
     }
   }
@@ -101,11 +103,12 @@ LinearFactor structureless_factor(const std::vector<StereoObservation>& obs, con
   const Eigen::MatrixXd FtE = lin.F.transpose() * lin.E;
   const Vec3 Etb = lin.E.transpose() * lin.b;
   LinearFactor f;
+  f.block_dim = kPoseDim;
   for (const StereoObservation& o : obs) f.slots.push_back(o.slot);
   f.H = -FtE * EtE.solve(FtE.transpose());
   for (int k = 0; k < static_cast<int>(obs.size()); ++k) {  // F^T F is block diagonal: one state per row block
-    const auto F_k = lin.F.block<4, kStateDim>(4 * k, kStateDim * k);
-    f.H.block<kStateDim, kStateDim>(kStateDim * k, kStateDim * k) += F_k.transpose() * F_k;
+    const auto F_k = lin.F.block<4, kPoseDim>(4 * k, kPoseDim * k);
+    f.H.block<kPoseDim, kPoseDim>(kPoseDim * k, kPoseDim * k) += F_k.transpose() * F_k;
   }
   f.g = lin.F.transpose() * lin.b - FtE * EtE.solve(Etb);
   f.cost = std::max(0.0, lin.b.squaredNorm() - Etb.dot(EtE.solve(Etb)));

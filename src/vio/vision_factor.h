@@ -24,10 +24,11 @@ struct StereoExtrinsics {
 };
 
 // Linearization of ||F_p dxi + E_p dx_p + b_p||^2 (paper eq. (2)-(3)), whitened by sigma_norm: four rows
-// per observation (left x, y, right x, y), F_p with one 15-column block per observation.
+// per observation (left x, y, right x, y), F_p with one 6-column block [dphi, dp] per observation (the
+// vision residual does not depend on velocity or biases).
 struct LandmarkLinearization {
   Eigen::VectorXd b;  // z - h(xi, x_p) / sigma
-  Eigen::MatrixXd F;  // d b / d dx of the observing states
+  Eigen::MatrixXd F;  // d b / d [dphi, dp] of the observing states
   Eigen::MatrixXd E;  // d b / d x_p
 };
 

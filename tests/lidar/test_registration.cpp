@@ -22,7 +22,7 @@ TEST(Registration, RecoversASyntheticOffsetFromIdentity) {
   FeatureMap map;
   map.insert(features_at(scene, T_W_target), T_W_target);
   const RegistrationResult r = register_scan(features_at(scene, T_W_source), map, SE3(), RegistrationConfig{});
-  EXPECT_TRUE(r.converged);
+  EXPECT_TRUE(r.converged) << r.outer_iterations << " " << (r.T_W_L.translation() - T_W_source.translation()).transpose();
   EXPECT_LT((r.T_W_L.translation() - T_W_source.translation()).norm(), 0.01);
   EXPECT_LT(angle_deg(r.T_W_L, T_W_source), 0.1);
   EXPECT_GT(r.matched_fraction, 0.5);

@@ -70,6 +70,39 @@ TEST(Vio, InitializesStaticAndTracksTheMotion) {
   EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
 }
 
+// Started while moving: the averaged specific force includes the acceleration and the velocity is unknown;
+// vision and IMU recover the gravity direction and the speed (both independent of the yaw/position gauge).
+TEST(Vio, RecoversFromAMovingStart) {
+  const test::AnalyticMotion motion;
+  const RigCalibration calib = test_calibration();
+  const StereoExtrinsics extr{calib.T_I_C0, calib.T_I_C1};
+  const std::vector<Vec3> landmarks = test::test_landmarks(400, 4);
+  std::mt19937 rng(4);
+  Vio vio(calib);
+  double first_gravity_deg = -1, first_speed_error = -1;
+  double gravity_deg = 0, speed_error = 0;
+  for (int k = 0; k <= 4 * 200; ++k) {
+    const double t = 0.5 + k * 0.005;
+    vio.add_imu(motion.imu(t));
+    if (k < 100 || k % 20 != 0) continue;
+    const NavState truth = motion.state(t);
+    vio.add_frame(test::observe(truth, landmarks, extr, 0.5 / 450.0, rng));
+    const NavState& est = vio.latest_state()->state;
+    const Vec3 up_est = est.R_W_I.transpose() * Vec3::UnitZ(), up_true = truth.R_W_I.transpose() * Vec3::UnitZ();
+    gravity_deg = std::acos(std::min(1.0, up_est.dot(up_true))) * 180 / M_PI;
+    speed_error = std::abs(est.v_W_m_s.norm() - truth.v_W_m_s.norm());
+    if (first_gravity_deg < 0) {
+      first_gravity_deg = gravity_deg;
+      first_speed_error = speed_error;
+    }
+  }
+  std::printf("moving start: gravity direction error %.3f deg -> %.3f deg, speed error %.3f m/s -> %.3f m/s\n",
+              first_gravity_deg, gravity_deg, first_speed_error, speed_error);
+  EXPECT_GT(first_speed_error, 0.2);
+  EXPECT_LT(gravity_deg, 0.5);
+  EXPECT_LT(speed_error, 0.03);
+}
+
 TEST(Vio, RejectsOutOfOrderInput) {
   Vio vio(test_calibration());
   ImuSample s;
@@ -80,6 +113,9 @@ TEST(Vio, RejectsOutOfOrderInput) {
   s.t_ns = 2000;
   s.gyro_rad_s.x() = std::nan("");
   EXPECT_THROW(vio.add_imu(s), InputError);
+  RigCalibration no_camera = test_calibration();
+  no_camera.cam0.fx = 0;
+  EXPECT_THROW(Vio{no_camera}, InputError);
   FrontendOutput frame;
   frame.t_ns = 1500;
   vio.add_frame(frame);
