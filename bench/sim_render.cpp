@@ -11,6 +11,7 @@
 #include "sim/camera_render.h"
 #include "sim/lidar_sim.h"
 #include "sim/scenario_figures.h"
+#include "sim/sim_config.h"
 
 namespace {
 
@@ -39,13 +40,13 @@ void BM_RenderImage(benchmark::State& state) {
   const World& world = world_of(scenario);
   const std::vector<Vec3>& route = world.route_W();
   RenderOptions options;
-  render_image(world, figure_camera(), [&](TimeNs) { return route_camera_pose(route, 0); }, 0, options);  // warm caches
+  render_image(world, default_camera(), [&](TimeNs) { return route_camera_pose(route, 0); }, 0, options);  // warm caches
   std::size_t k = 0;
   const double cpu_start_s = process_cpu_s();
   for (auto _ : state) {
     const SE3 T_W_C = route_camera_pose(route, (k * 7) % route.size());
     options.noise_seed = k++;
-    benchmark::DoNotOptimize(render_image(world, figure_camera(), [&](TimeNs) { return T_W_C; }, 0, options));
+    benchmark::DoNotOptimize(render_image(world, default_camera(), [&](TimeNs) { return T_W_C; }, 0, options));
   }
   set_cpu_counter(state, cpu_start_s);
   state.SetLabel(scenario_name(scenario));

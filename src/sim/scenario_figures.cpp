@@ -8,6 +8,7 @@
 #include "sim/camera_render.h"
 #include "sim/figures.h"
 #include "sim/lidar_sim.h"
+#include "sim/sim_config.h"
 
 namespace vilslam::sim {
 namespace {
@@ -72,17 +73,6 @@ cv::Mat map_top_view(const World& world) {
 
 }  // namespace
 
-CameraIntrinsics figure_camera() {
-  CameraIntrinsics c;
-  c.width_px = 752;
-  c.height_px = 480;
-  c.fx = c.fy = 460;
-  c.cx = 375.5;
-  c.cy = 239.5;
-  c.rate_hz = 20;
-  return c;
-}
-
 SE3 route_camera_pose(const std::vector<Vec3>& route_W, std::size_t i, double lookahead_m) {
   return camera_pose_looking(route_W[i], route_heading(route_W, i, lookahead_m));
 }
@@ -93,7 +83,7 @@ ScenarioFigures make_scenario_figures(const World& world, std::uint64_t seed) {
   RenderOptions options;
   options.noise_seed = seed;
   ScenarioFigures f;
-  f.left = render_image(world, figure_camera(), [&](TimeNs) { return T_W_C; }, 0, options);
+  f.left = render_image(world, default_camera(), [&](TimeNs) { return T_W_C; }, 0, options);
   f.scan_top = scan_top_view(world, route.front(), route_heading(route, 0, 3.0), seed);
   f.map_top = map_top_view(world);
   return f;
