@@ -27,8 +27,9 @@ cv::Point2d TopView::pixel(double x, double y) const {
 }
 
 void TopView::draw_points(const std::vector<Eigen::Vector3f>& points, double z_min, double z_max, double z_clip,
-                          int dot_px) {
-  cv::Mat top_z(image_.size(), CV_32F, cv::Scalar(-std::numeric_limits<float>::infinity()));
+                          int dot_px, double min_span_m) {
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  cv::Mat top_z(image_.size(), CV_32F, cv::Scalar(-kInf)), bottom_z(image_.size(), CV_32F, cv::Scalar(kInf));
   for (const Eigen::Vector3f& p : points) {
     if (p.z() > z_clip) continue;
     const cv::Point2d px = pixel(p.x(), p.y());
@@ -36,22 +37,23 @@ void TopView::draw_points(const std::vector<Eigen::Vector3f>& points, double z_m
     const int r0 = static_cast<int>(std::floor(px.y)) - (dot_px - 1) / 2;
     for (int r = std::max(r0, 0); r < std::min(r0 + dot_px, image_.rows); ++r) {
       for (int c = std::max(c0, 0); c < std::min(c0 + dot_px, image_.cols); ++c) {
-        float& z = top_z.at<float>(r, c);
-        z = std::max(z, p.z());
+        top_z.at<float>(r, c) = std::max(top_z.at<float>(r, c), p.z());
+        bottom_z.at<float>(r, c) = std::min(bottom_z.at<float>(r, c), p.z());
       }
     }
   }
   cv::Mat level(image_.size(), CV_8U);
-  const double span = std::max(z_max - z_min, 1e-6);
+  const double z_range = std::max(z_max - z_min, 1e-6);
   for (int r = 0; r < image_.rows; ++r) {
     for (int c = 0; c < image_.cols; ++c) {
-      const double t = std::clamp((top_z.at<float>(r, c) - z_min) / span, 0.0, 1.0);
+      const double t = std::clamp((top_z.at<float>(r, c) - z_min) / z_range, 0.0, 1.0);
       level.at<std::uint8_t>(r, c) = static_cast<std::uint8_t>(std::lround(255 * t));
     }
   }
   cv::Mat colour;
   cv::applyColorMap(level, colour, cv::COLORMAP_TURBO);
-  colour.copyTo(image_, top_z > -std::numeric_limits<float>::infinity());
+  const cv::Mat height_span = top_z - bottom_z;
+  colour.copyTo(image_, (top_z > -kInf) & (height_span >= static_cast<float>(min_span_m)));
 }
 
 void TopView::draw_path(const std::vector<Vec3>& points, const cv::Scalar& bgr, int thickness_px) {

@@ -18,10 +18,11 @@ class TopView {
   TopView(const Eigen::AlignedBox2d& extent_xy, int max_side_px);
 
   // Each pixel shows its highest point with z <= z_clip (a cut through the ceiling), coloured by height
-  // from z_min (blue) to z_max (red); a point covers dot_px x dot_px pixels. May be called more than
-  // once; later calls draw on top.
+  // from z_min (blue) to z_max (red); a point covers dot_px x dot_px pixels. Pixels whose points span
+  // less than min_span_m in height stay blank (with min_span_m > 0, floors and ground drop out and walls,
+  // shelves and trees remain, even on sloped ground). Later calls draw on top.
   void draw_points(const std::vector<Eigen::Vector3f>& points, double z_min, double z_max, double z_clip,
-                   int dot_px = 1);
+                   int dot_px = 1, double min_span_m = 0);
   // A polyline through the points' x-y (BGR colour), with a dot at the first point.
   void draw_path(const std::vector<Vec3>& points, const cv::Scalar& bgr, int thickness_px);
   // A scale bar of a round length in the lower left corner.

@@ -23,7 +23,6 @@ class MaterialTextures {
 
   // Albedo in [0, 1] of material `index` at uv (metres) seen with a pixel footprint of footprint_m.
   float albedo(int index, const Eigen::Vector2d& uv_m, double footprint_m) const;
-  std::size_t size() const { return entries_.size(); }
 
  private:
   struct Entry {

@@ -20,7 +20,6 @@ class MipTile {
   float sample_level(double u_m, double v_m, int level) const;
   int num_levels() const { return static_cast<int>(levels_.size()); }
   const std::vector<float>& level(int i) const { return levels_[i]; }
-  int size() const { return size_; }
 
  private:
   int size_;

@@ -8,6 +8,7 @@
 #include "sim/camera_render.h"
 #include "sim/figures.h"
 #include "sim/lidar_sim.h"
+#include "sim/sim_config.h"
 
 namespace vilslam::sim {
 namespace {
@@ -61,31 +62,16 @@ cv::Mat map_top_view(const World& world) {
   const PointCloud cloud = world.sample_surfaces(spacing_m);
   double route_z = 0;
   for (const Vec3& p : world.route_W()) route_z += p.z() / static_cast<double>(world.route_W().size());
-  // Cut 1 m above the route so ceilings and roofs do not hide the floor plan; leave out the floor.
-  const double z_clip = route_z + 1.0, z_floor = b.min().z() + 0.05;
-  std::vector<Eigen::Vector3f> above_floor;
-  for (const Eigen::Vector3f& p : cloud.points) {
-    if (p.z() > z_floor) above_floor.push_back(p);
-  }
+  // Cut 1 m above the route so ceilings and roofs do not hide the floor plan; floors and ground drop out.
+  const double z_clip = route_z + 1.0;
   TopView view(extent, kFigureSidePx);
-  view.draw_points(above_floor, z_floor, z_clip, z_clip, 1);
+  view.draw_points(cloud.points, b.min().z(), z_clip, z_clip, 2, 0.2);
   view.draw_path(world.route_W(), cv::Scalar(0, 0, 0), 2);
   view.draw_scale_bar();
   return view.image().clone();
 }
 
 }  // namespace
-
-CameraIntrinsics figure_camera() {
-  CameraIntrinsics c;
-  c.width_px = 752;
-  c.height_px = 480;
-  c.fx = c.fy = 460;
-  c.cx = 375.5;
-  c.cy = 239.5;
-  c.rate_hz = 20;
-  return c;
-}
 
 SE3 route_camera_pose(const std::vector<Vec3>& route_W, std::size_t i, double lookahead_m) {
   return camera_pose_looking(route_W[i], route_heading(route_W, i, lookahead_m));
@@ -97,7 +83,7 @@ ScenarioFigures make_scenario_figures(const World& world, std::uint64_t seed) {
   RenderOptions options;
   options.noise_seed = seed;
   ScenarioFigures f;
-  f.left = render_image(world, figure_camera(), [&](TimeNs) { return T_W_C; }, 0, options);
+  f.left = render_image(world, default_camera(), [&](TimeNs) { return T_W_C; }, 0, options);
   f.scan_top = scan_top_view(world, route.front(), route_heading(route, 0, 3.0), seed);
   f.map_top = map_top_view(world);
   return f;

@@ -13,9 +13,6 @@
 
 namespace vilslam::sim {
 
-// The figures' camera: 752 x 480, fx = fy = 460, principal point at the centre, no distortion.
-CameraIntrinsics figure_camera();
-
 // Camera pose at route waypoint i looking (level) towards the first later waypoint at least lookahead_m
 // away, as a vehicle that smooths the route's corners would.
 SE3 route_camera_pose(const std::vector<Vec3>& route_W, std::size_t i, double lookahead_m = 3.0);

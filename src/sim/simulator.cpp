@@ -1,5 +1,6 @@
 #include "sim/simulator.h"
 
+#include <spdlog/spdlog.h>
 #include <tbb/parallel_for.h>
 
 #include <cmath>
@@ -7,7 +8,6 @@
 #include <memory>
 
 #include "common/error.h"
-#include <spdlog/spdlog.h>
 #include "io/dataset_writer.h"
 #include "io/euroc_tables.h"
 #include "io/trajectory_io.h"
@@ -38,6 +38,9 @@ struct Scene {
 // the configured speed (or at the speed that makes it last request.duration_s).
 Scene make_scene(const SimConfig& config, const SimulateRequest& request) {
   RouteMotionConfig motion_config = route_motion_config(config, request.scenario);
+  const double min_duration_s = motion_config.rest_start_s + motion_config.rest_end_s + motion_config.ramp_s;
+  if (request.duration_s > 0 && request.duration_s <= min_duration_s)
+    throw InputError("--duration", "must exceed the rests and speed ramps (" + std::to_string(min_duration_s) + " s)");
   double length_m = request.length_m;
   if (request.duration_s > 0 && length_m <= 0)
     length_m = motion_config.cruise_speed_m_s *

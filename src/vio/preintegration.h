@@ -33,7 +33,6 @@ class Preintegration {
   const Mat3& dp_dba() const { return dp_dba_; }
   // Covariance of the preintegrated noise [dphi; dv; dp] (eq. (62)).
   const Mat9& covariance() const { return covariance_; }
-  const ImuNoise& noise() const { return noise_; }
 
   // Deltas corrected to the biases (bg, ba) to first order (eq. (44)).
   Mat3 corrected_delta_R(const Vec3& bias_gyro_rad_s) const;

@@ -1,6 +1,7 @@
 #include "vio/vio.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "common/error.h"
 
@@ -9,12 +10,20 @@ namespace {
 
 constexpr const char* kSource = "vio input";
 
+// cam0's focal length, which converts the pixel noise into normalized coordinates.
+double checked_focal_px(const RigCalibration& calib) {
+  if (!(calib.cam0.fx > 0) || !std::isfinite(calib.cam0.fx)) {
+    throw InputError("calibration", "cam0 focal length must be positive for the VIO's pixel noise");
+  }
+  return calib.cam0.fx;
+}
+
 }  // namespace
 
 Vio::Vio(const RigCalibration& calib, const VioConfig& config)
     : config_(config),
       calib_(calib),
-      smoother_(config.smoother, {calib.T_I_C0, calib.T_I_C1}, calib.imu, calib.cam0.fx),
+      smoother_(config.smoother, {calib.T_I_C0, calib.T_I_C1}, calib.imu, checked_focal_px(calib)),
       propagator_(calib.imu, Vec3(0, 0, -config.smoother.gravity_m_s2)) {}
 
 void Vio::add_imu(const ImuSample& sample) {

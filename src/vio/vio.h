@@ -45,6 +45,7 @@ struct VioImuOutput {
 
 class Vio {
  public:
+  // Throws InputError when cam0 has no positive focal length.
   explicit Vio(const RigCalibration& calib, const VioConfig& config = {});
 
   // Samples must arrive in strictly increasing time; feed every sample up to a frame's time before it.

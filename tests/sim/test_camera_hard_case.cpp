@@ -9,6 +9,7 @@
 
 #include "sim/camera_render.h"
 #include "sim/scenario_figures.h"
+#include "sim/sim_config.h"
 
 namespace vilslam::sim {
 namespace {
@@ -32,9 +33,9 @@ CornerCounts corners_along_route(Scenario scenario, int frames) {
     const SE3 T_W_C = route_camera_pose(route, k * (route.size() - 1) / frames);
     RenderOptions options;
     options.noise_seed = k;
-    const std::vector<cv::Point2f> a = corners(render_image(world, figure_camera(), [&](TimeNs) { return T_W_C; }, 0, options));
+    const std::vector<cv::Point2f> a = corners(render_image(world, default_camera(), [&](TimeNs) { return T_W_C; }, 0, options));
     options.noise_seed = 1000 + k;
-    const std::vector<cv::Point2f> b = corners(render_image(world, figure_camera(), [&](TimeNs) { return T_W_C; }, 0, options));
+    const std::vector<cv::Point2f> b = corners(render_image(world, default_camera(), [&](TimeNs) { return T_W_C; }, 0, options));
     int again = 0;
     for (const cv::Point2f& p : a) {
       again += std::any_of(b.begin(), b.end(), [&](const cv::Point2f& q) { return cv::norm(p - q) < 1.0; });

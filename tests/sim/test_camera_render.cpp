@@ -11,6 +11,7 @@
 #include "sim/camera_rays.h"
 #include "sim/camera_render.h"
 #include "sim/scenario_figures.h"
+#include "sim/sim_config.h"
 
 namespace vilslam::sim {
 namespace {
@@ -21,7 +22,7 @@ const World& highbay() {
 }
 
 CameraIntrinsics euroc_radtan() {
-  CameraIntrinsics c = figure_camera();
+  CameraIntrinsics c = default_camera();
   c.fx = 458.654;
   c.fy = 457.296;
   c.cx = 367.215;
@@ -99,7 +100,7 @@ TEST(CameraRender, DistortedImageContentLandsWhereTheCalibrationProjectsIt) {
   const World& world = highbay();
   const CameraIntrinsics distorted = euroc_radtan();
   // Reference: an undistorted pinhole camera with a wider field of view at the same pose.
-  CameraIntrinsics pinhole = figure_camera();
+  CameraIntrinsics pinhole = default_camera();
   pinhole.width_px = 1100;
   pinhole.height_px = 760;
   pinhole.cx = 549.5;
@@ -156,7 +157,7 @@ void stereo_errors(const cv::Mat& left, const cv::Mat& right, const cv::Mat& dep
 
 TEST(CameraRender, StereoDisparityMatchesDepth) {
   const World& world = highbay();
-  const CameraIntrinsics cam = figure_camera();
+  const CameraIntrinsics cam = default_camera();
   const double baseline_m = 0.3;
   std::vector<double> errors;
   for (std::size_t k = 0; k < world.route_W().size() && errors.size() < 200; k += 5) {
@@ -178,7 +179,7 @@ TEST(CameraRender, StereoDisparityMatchesDepth) {
 
 TEST(CameraRender, NoiseGainAndDeterminism) {
   const World& world = highbay();
-  const CameraIntrinsics cam = figure_camera();
+  const CameraIntrinsics cam = default_camera();
   const auto pose = fixed(route_camera_pose(world.route_W(), 0));
   RenderOptions o;
   o.noise_seed = 7;
@@ -206,7 +207,7 @@ double gradient_energy(const cv::Mat& image) {
 
 TEST(CameraRender, MotionBlurSmearsFastRotation) {
   const World& world = highbay();
-  const CameraIntrinsics cam = figure_camera();
+  const CameraIntrinsics cam = default_camera();
   const SE3 T0 = route_camera_pose(world.route_W(), 0);
   // Yaw at 2 rad/s: 10 ms of exposure sweeps about 9 pixels.
   auto spinning = [T0](TimeNs t) { return T0 * SE3(so3::exp(Vec3(0, 2.0 * ns_to_s(t), 0)), Vec3::Zero()); };

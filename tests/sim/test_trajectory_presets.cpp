@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <iostream>
+
 #include "sim/sim_config.h"
 #include "sim/trajectory.h"
 #include "sim/world.h"
@@ -28,6 +30,8 @@ TEST(RouteMotion, PresetsHaveThePapersLengthsAndSpeeds) {
       max_accel = std::max(max_accel, s.a_W.norm());
       min_clearance = std::min(min_clearance, world.distance_to_surface(s.T_W_I.translation()));
     }
+    std::cout << name << ": " << motion.length_m() << " m, " << ns_to_s(motion.end_ns() - motion.start_ns())
+              << " s, peak acceleration " << max_accel << " m/s^2, clearance " << min_clearance << " m\n";
     EXPECT_LE(max_speed, hi + 1e-6) << name;
     EXPECT_LT(max_accel, outdoor ? 4.0 : 3.0) << name;
     EXPECT_GT(min_clearance, 0.3) << name << ": the rounded route keeps clear of the geometry";

@@ -113,6 +113,9 @@ TEST(Vio, RejectsOutOfOrderInput) {
   s.t_ns = 2000;
   s.gyro_rad_s.x() = std::nan("");
   EXPECT_THROW(vio.add_imu(s), InputError);
+  RigCalibration no_camera = test_calibration();
+  no_camera.cam0.fx = 0;
+  EXPECT_THROW(Vio{no_camera}, InputError);
   FrontendOutput frame;
   frame.t_ns = 1500;
   vio.add_frame(frame);
