@@ -31,7 +31,7 @@ Eigen::MatrixXd numeric_jacobian(const Residual& f, const std::vector<NavState>&
 
 NavState random_state(std::mt19937& rng, TimeNs t_ns) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  auto v3 = [&](double s) { return Vec3(u(rng), u(rng), u(rng)) * s; };
+  auto v3 = [&](double s) -> Vec3 { return Vec3(u(rng), u(rng), u(rng)) * s; };
   NavState x;
   x.t_ns = t_ns;
   x.R_W_I = so3::exp(v3(2.0));
