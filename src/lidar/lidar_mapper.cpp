@@ -1,0 +1,144 @@
+#include "lidar/lidar_mapper.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <chrono>
+
+#include "common/error.h"
+#include "lidar/dewarp.h"
+#include "lidar/registration.h"
+
+namespace vilslam::lidar {
+
+namespace {
+
+// Constant-velocity motion: the pose at t relative to the pose at end_t_ns, Exp(((t - t_end) / dt) xi).
+PoseAtTime constant_velocity(const Vec6& motion, TimeNs duration_ns, TimeNs end_t_ns) {
+  return [motion, duration_ns, end_t_ns](TimeNs t_ns) {
+    return SE3::exp(motion * (double(t_ns - end_t_ns) / double(duration_ns)));
+  };
+}
+
+}  // namespace
+
+// The mapper remaps degenerate directions; 0.03 per match flags the simulated tunnel (along-axis eigenvalue
+// 0.004-0.02 per match from noisy plane fits) and not the highbay (docs/lidar.md).
+LidarMapperConfig::LidarMapperConfig() {
+  lidar.registration.remap_degenerate_directions = true;
+  lidar.registration.degenerate_min_eigenvalue_per_match = 0.03;
+}
+
+LidarMapperConfig LidarMapperConfig::from_yaml(const std::string& path) {
+  LidarMapperConfig c;
+  c.lidar = load_lidar_config(path);
+  try {
+    const YAML::Node root = YAML::LoadFile(path);
+    // Keys the file leaves out keep the mapper's defaults, not those of LidarConfig.
+    const YAML::Node registration = root["registration"];
+    const LidarMapperConfig defaults;
+    if (!registration || !registration["remap_degenerate_directions"]) {
+      c.lidar.registration.remap_degenerate_directions = defaults.lidar.registration.remap_degenerate_directions;
+    }
+    if (!registration || !registration["degenerate_min_eigenvalue_per_match"]) {
+      c.lidar.registration.degenerate_min_eigenvalue_per_match =
+          defaults.lidar.registration.degenerate_min_eigenvalue_per_match;
+    }
+    const YAML::Node mapper = root["mapper"];
+    if (!mapper) return c;
+    if (!mapper.IsMap()) throw InputError(path, "section 'mapper' must be a mapping", mapper.Mark().line + 1);
+    for (const auto& entry : mapper) {
+      const std::string key = entry.first.as<std::string>();
+      if (key == "dewarp") {
+        c.dewarp = entry.second.as<bool>();
+      } else if (key == "lidar_only_redewarp") {
+        c.lidar_only_redewarp = entry.second.as<bool>();
+      } else {
+        throw InputError(path, "unknown key 'mapper." + key + "'", entry.first.Mark().line + 1);
+      }
+    }
+  } catch (const YAML::Exception& e) {
+    throw InputError(path, e.msg, e.mark.line + 1);
+  }
+  return c;
+}
+
+LidarMapper::LidarMapper(const LidarMapperConfig& config, const SE3& T_I_L)
+    : config_(config), T_I_L_(T_I_L), map_(config.lidar.map) {}
+
+LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior) {
+  const auto start = std::chrono::steady_clock::now();
+  if (scan.points.empty()) throw InputError("lidar scan", "empty scan at t_ns " + std::to_string(scan.t_ns));
+  const TimeNs end_t_ns = scan.end_t_ns();
+  if (previous_ && end_t_ns <= previous_->end_t_ns) {
+    throw InputError("lidar scan", "scan ending at " + std::to_string(end_t_ns) + " ns is not after the previous one");
+  }
+  const bool has_prior = static_cast<bool>(T_W_I_prior);
+  const auto prior_T_W_L = [&](TimeNs t_ns) { return T_W_I_prior(t_ns) * T_I_L_; };
+
+  // Features come from the raw sweep, before dewarping (paper Sec. "Lidar mapping").
+  const FeatureScan raw = extract_features(scan, config_.lidar.rings, config_.lidar.features);
+  FeatureScan features = raw;
+
+  std::optional<SE3> T_W_L_prior_end;
+  if (has_prior) T_W_L_prior_end = prior_T_W_L(end_t_ns);
+  const bool constant_velocity_known = previous_ && previous_->motion.has_value();
+  if (config_.dewarp && has_prior) {
+    features = dewarp(features, end_t_ns, prior_T_W_L);
+  } else if (config_.dewarp && constant_velocity_known) {
+    features = dewarp(features, end_t_ns,
+                      constant_velocity(*previous_->motion, previous_->motion_duration_ns, end_t_ns));
+  }
+
+  LidarMappingResult out;
+  out.t_ns = end_t_ns;
+  if (!previous_) {
+    // The first scan defines the map frame: the VIO world frame when a prior is given.
+    out.T_W_L = T_W_L_prior_end.value_or(SE3());
+    if (!has_prior && config_.dewarp && config_.lidar_only_redewarp) first_raw_ = raw;
+  } else {
+    // Paper: L*_{k+1} = L_k T_trans, T_trans the prior's motion since the previous scan end.
+    SE3 T_trans;
+    if (has_prior && previous_->T_W_L_prior) {
+      T_trans = previous_->T_W_L_prior->inverse() * *T_W_L_prior_end;
+    } else if (constant_velocity_known) {
+      const double ratio = double(end_t_ns - previous_->end_t_ns) / double(previous_->motion_duration_ns);
+      T_trans = SE3::exp(*previous_->motion * ratio);
+    }
+    RegistrationResult r = register_scan(features, map_, previous_->T_W_L * T_trans, config_.lidar.registration);
+    if (!has_prior && config_.dewarp && config_.lidar_only_redewarp) {
+      // LiDAR-only: the registered motion of this sweep replaces the extrapolated one for dewarping (the
+      // role of LOAM's scan-to-scan odometry), and the sweep is registered again from that solution.
+      const Vec6 motion = (previous_->T_W_L.inverse() * r.T_W_L).log();
+      const TimeNs duration_ns = end_t_ns - previous_->end_t_ns;
+      features = dewarp(raw, end_t_ns, constant_velocity(motion, duration_ns, end_t_ns));
+      if (first_raw_) {
+        // The first sweep went into the map undewarped (no motion was known): rebuild it dewarped.
+        map_ = FeatureMap(config_.lidar.map);
+        map_.insert(dewarp(*first_raw_, previous_->end_t_ns, constant_velocity(motion, duration_ns, previous_->end_t_ns)),
+                    previous_->T_W_L);
+        first_raw_.reset();
+      }
+      r = register_scan(features, map_, r.T_W_L, config_.lidar.registration);
+    }
+    out.T_W_L = r.T_W_L;
+    out.degenerate = r.degeneracy.degenerate();
+    out.information_eigenvalues = r.degeneracy.eigenvalues;
+  }
+  out.num_edge_features = static_cast<int>(features.edges.size());
+  out.num_surface_features = static_cast<int>(features.surfaces.size());
+  map_.insert(features, out.T_W_L);
+
+  Previous next;
+  next.end_t_ns = end_t_ns;
+  next.T_W_L = out.T_W_L;
+  next.T_W_L_prior = T_W_L_prior_end;
+  if (previous_) {
+    next.motion = (previous_->T_W_L.inverse() * out.T_W_L).log();
+    next.motion_duration_ns = end_t_ns - previous_->end_t_ns;
+  }
+  previous_ = next;
+  out.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace vilslam::lidar

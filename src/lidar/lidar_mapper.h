@@ -1,0 +1,65 @@
+#pragma once
+// The stateful LiDAR mapping of the paper (Sec. "Lidar mapping"): per sweep, LOAM features from the raw
+// scan, dewarping to the scan end with the motion prior, the initial guess L*_{k+1} = L_k T_trans,
+// scan-to-map registration with Zhang et al. solution remapping, and insertion into the local feature map.
+// Without a prior it is the LOAM baseline: a constant-velocity motion model.
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "common/lie.h"
+#include "common/types.h"
+#include "lidar/feature_map.h"
+#include "lidar/lidar_config.h"
+
+namespace vilslam::lidar {
+
+struct LidarMapperConfig {
+  LidarConfig lidar;  // rings, features, map (voxel sizes, radius max_distance_m), registration
+  bool dewarp = true; // move feature points to the scan end before registration (paper eq. for P~_i)
+  // Without a prior: dewarp again with the sweep's registered motion and register once more.
+  bool lidar_only_redewarp = true;
+
+  LidarMapperConfig();
+
+  // The sections of load_lidar_config plus an optional `mapper:` section (dewarp, lidar_only_redewarp). Throws InputError.
+  static LidarMapperConfig from_yaml(const std::string& path);
+};
+
+struct LidarMappingResult {
+  TimeNs t_ns = 0;  // the scan end t_{k+1}, the instant of T_W_L
+  SE3 T_W_L;
+  bool degenerate = false;             // some direction was below the degeneracy threshold
+  Vec6 information_eigenvalues = Vec6::Zero();  // of J^T J at the solution, ascending
+  double time_ms = 0.0;                // wall time of process(), for reporting only
+  int num_edge_features = 0;           // extracted from the sweep
+  int num_surface_features = 0;
+};
+
+class LidarMapper {
+ public:
+  LidarMapper(const LidarMapperConfig& config, const SE3& T_I_L);
+
+  // T_W_I_prior: IMU-rate VIO pose at any time covering [scan.t_ns, scan end]; an empty function gives
+  // LiDAR-only mapping. Throws InputError on an empty scan or a scan ending before the previous one.
+  LidarMappingResult process(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior);
+
+  const FeatureMap& map() const { return map_; }
+
+ private:
+  struct Previous {
+    TimeNs end_t_ns = 0;
+    SE3 T_W_L;                        // the optimized L_k
+    std::optional<SE3> T_W_L_prior;   // the prior's LiDAR pose at end_t_ns, when there was one
+    std::optional<Vec6> motion;       // log(L_{k-1}^-1 L_k), for the constant-velocity model
+    TimeNs motion_duration_ns = 0;
+  };
+
+  LidarMapperConfig config_;
+  SE3 T_I_L_;
+  FeatureMap map_;
+  std::optional<Previous> previous_;
+  std::optional<FeatureScan> first_raw_;  // LiDAR-only: the first sweep's features until its motion is known
+};
+
+}  // namespace vilslam::lidar

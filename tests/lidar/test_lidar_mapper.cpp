@@ -1,0 +1,182 @@
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <vector>
+
+#include "common/error.h"
+#include "lidar/lidar_mapper.h"
+#include "sim/lidar_sim.h"
+#include "sim/scan_degeneracy.h"
+#include "sim/sim_config.h"
+#include "sim/trajectory.h"
+#include "sim/world.h"
+#include "test_util.h"
+
+namespace vilslam::lidar {
+namespace {
+
+constexpr TimeNs kScanPeriodNs = 100'000'000;
+
+// LiDAR 12 cm above the IMU, yawed 90 deg (a non-trivial extrinsic).
+SE3 T_I_L() { return SE3(so3::exp(Vec3(0, 0, M_PI / 2)), Vec3(0.05, 0.0, 0.12)); }
+
+const sim::World& world(sim::Scenario scenario) {
+  static const sim::World highbay = sim::World::generate(sim::Scenario::kHighbay, 1);
+  static const sim::World tunnel = sim::World::generate(sim::Scenario::kTunnel, 1);
+  return scenario == sim::Scenario::kTunnel ? tunnel : highbay;
+}
+
+// The simulator's route motion through the scenario, optionally spinning about the body z axis.
+struct Sequence {
+  std::function<SE3(TimeNs)> T_W_I;
+  std::vector<LidarScan> scans;
+};
+
+Sequence simulate(sim::Scenario scenario, double start_s, int num_scans, double spin_rad_s = 0.0) {
+  const sim::World& w = world(scenario);
+  const auto motion = std::make_shared<sim::RouteMotion>(
+      w.route_W(), sim::route_motion_config(sim::SimConfig{}, scenario));
+  const TimeNs t0 = s_to_ns(start_s);
+  Sequence seq;
+  seq.T_W_I = [motion, spin_rad_s, t0](TimeNs t) {
+    return motion->pose(t) * SE3(so3::exp(Vec3(0, 0, spin_rad_s * ns_to_s(t - t0))), Vec3::Zero());
+  };
+  const auto T_W_L = [seq_T_W_I = seq.T_W_I](TimeNs t) { return seq_T_W_I(t) * T_I_L(); };
+  for (int k = 0; k < num_scans; ++k) {
+    seq.scans.push_back(sim::simulate_sweep(w, sim::LidarSimConfig{}, t0 + k * kScanPeriodNs, T_W_L, 100 + k));
+  }
+  return seq;
+}
+
+struct Errors {
+  double max_translation_m = 0;
+  double max_rotation_deg = 0;
+  int degenerate_scans = 0;
+  std::vector<SE3> poses;
+};
+
+// Runs the mapper over the sequence and compares each pose with the truth. Poses are compared relative to
+// the first one so that a prior-less run (map frame = first LiDAR frame) is comparable.
+Errors run(const Sequence& seq, const LidarMapperConfig& config, const std::function<SE3(TimeNs)>& prior,
+           const Vec3& axis_W = Vec3::Zero(), double* along_axis_m = nullptr) {
+  LidarMapper mapper(config, T_I_L());
+  Errors e;
+  SE3 first_true, first_est;
+  for (std::size_t k = 0; k < seq.scans.size(); ++k) {
+    const LidarMappingResult r = mapper.process(seq.scans[k], prior);
+    const SE3 truth = seq.T_W_I(r.t_ns) * T_I_L();
+    if (k == 0) first_true = truth, first_est = r.T_W_L;
+    const SE3 rel_true = first_true.inverse() * truth, rel_est = first_est.inverse() * r.T_W_L;
+    const Vec3 dp_W = first_true.rotation() * (rel_est.translation() - rel_true.translation());
+    e.max_translation_m = std::max(e.max_translation_m, dp_W.norm());
+    e.max_rotation_deg = std::max(e.max_rotation_deg, so3::log((rel_true.inverse() * rel_est).rotation()).norm() * 180 / M_PI);
+    if (along_axis_m) *along_axis_m = dp_W.dot(axis_W);
+    e.degenerate_scans += r.degenerate ? 1 : 0;
+    e.poses.push_back(r.T_W_L);
+  }
+  return e;
+}
+
+TEST(LidarMapper, TracksTheHighbayWithAndWithoutPrior) {
+  const Sequence seq = simulate(sim::Scenario::kHighbay, 5.0, 20);
+  // The prior drifts 5 cm/s sideways and 1 deg/s in yaw: the LiDAR must correct it.
+  const auto drifting = [&seq](TimeNs t) {
+    const double s = ns_to_s(t) - 5.0;
+    return SE3(so3::exp(Vec3(0, 0, s * M_PI / 180)), Vec3(0.0, 0.05 * s, 0.0)) * seq.T_W_I(t);
+  };
+  const Errors with_truth = run(seq, LidarMapperConfig{}, seq.T_W_I);
+  const Errors with_drift = run(seq, LidarMapperConfig{}, drifting);
+  const Errors lidar_only = run(seq, LidarMapperConfig{}, nullptr);
+  std::cout << "highbay 2 s: prior = truth " << with_truth.max_translation_m << " m / " << with_truth.max_rotation_deg
+            << " deg; drifting prior " << with_drift.max_translation_m << " m / " << with_drift.max_rotation_deg
+            << " deg; LiDAR-only " << lidar_only.max_translation_m << " m / " << lidar_only.max_rotation_deg
+            << " deg; degenerate scans " << with_truth.degenerate_scans << "/" << seq.scans.size() << "\n";
+  EXPECT_LT(with_truth.max_translation_m, 0.05);
+  EXPECT_LT(with_truth.max_rotation_deg, 0.5);
+  EXPECT_LT(with_drift.max_translation_m, 0.05);
+  EXPECT_LT(with_drift.max_rotation_deg, 0.5);
+  EXPECT_LT(lidar_only.max_translation_m, 0.1);
+  EXPECT_LT(lidar_only.max_rotation_deg, 1.5);
+  EXPECT_LE(with_truth.degenerate_scans, 1);
+}
+
+TEST(LidarMapper, DewarpingWithThePriorMatters) {
+  const Sequence seq = simulate(sim::Scenario::kHighbay, 5.0, 12, 2.0);  // spinning 115 deg/s
+  LidarMapperConfig raw;
+  raw.dewarp = false;
+  const Errors dewarped = run(seq, LidarMapperConfig{}, seq.T_W_I);
+  const Errors not_dewarped = run(seq, raw, seq.T_W_I);
+  std::cout << "highbay spinning 115 deg/s: dewarped " << dewarped.max_translation_m << " m / "
+            << dewarped.max_rotation_deg << " deg; not dewarped " << not_dewarped.max_translation_m << " m / "
+            << not_dewarped.max_rotation_deg << " deg\n";
+  EXPECT_LT(dewarped.max_translation_m, 0.05);
+  EXPECT_LT(dewarped.max_rotation_deg, 0.5);
+  EXPECT_GT(not_dewarped.max_rotation_deg, 3 * dewarped.max_rotation_deg);
+}
+
+TEST(LidarMapper, KeepsThePriorAlongTheTunnelAxis) {
+  // Through the acceleration ramp after the rest: a constant-velocity model cannot follow the speed-up.
+  const Sequence seq = simulate(sim::Scenario::kTunnel, 1.5, 25);
+  // The tube's axis: the direction the simulator finds unconstrained at the first pose.
+  const Vec6 weakest = sim::analyze_scan_degeneracy(world(sim::Scenario::kTunnel), sim::LidarSimConfig{},
+                                                    seq.T_W_I(seq.scans.front().t_ns) * T_I_L()).weakest_direction;
+  const Vec3 axis_W = weakest.head<3>().normalized();
+  // The prior drifts 5 cm/s along the axis and 5 cm/s across it.
+  const Vec3 drift_m_s = 0.05 * (axis_W + axis_W.cross(Vec3::UnitZ()));
+  const auto drifting = [&seq, drift_m_s](TimeNs t) {
+    return SE3(Quat::Identity(), drift_m_s * (ns_to_s(t) - 1.5)) * seq.T_W_I(t);
+  };
+  double prior_along_m = 0, lidar_only_along_m = 0;
+  const Errors with_prior = run(seq, LidarMapperConfig{}, drifting, axis_W, &prior_along_m);
+  const Errors lidar_only = run(seq, LidarMapperConfig{}, nullptr, axis_W, &lidar_only_along_m);
+  const double prior_drift_m = 0.05 * ns_to_s(seq.scans.back().end_t_ns() - seq.scans.front().end_t_ns());
+  std::cout << "tunnel 2.5 s: degenerate scans " << with_prior.degenerate_scans << "/" << seq.scans.size()
+            << "; drifting prior: final along-axis error " << prior_along_m << " m (prior drift " << prior_drift_m
+            << " m), max error " << with_prior.max_translation_m << " m; LiDAR-only: final along-axis error "
+            << lidar_only_along_m << " m, max error " << lidar_only.max_translation_m << " m\n";
+  EXPECT_GE(with_prior.degenerate_scans, int(seq.scans.size()) * 8 / 10);
+  // Along the axis the prior's motion is kept (its drift, no more); across it the LiDAR removes the drift.
+  EXPECT_NEAR(prior_along_m, prior_drift_m, 0.03);
+  EXPECT_LT(with_prior.max_translation_m, prior_drift_m * std::sqrt(2.0) - 0.03);
+  EXPECT_GT(std::abs(lidar_only_along_m), 1.5 * prior_drift_m);
+}
+
+TEST(LidarMapper, IsDeterministic) {
+  const Sequence seq = simulate(sim::Scenario::kHighbay, 5.0, 6);
+  const Errors a = run(seq, LidarMapperConfig{}, seq.T_W_I);
+  const Errors b = run(seq, LidarMapperConfig{}, seq.T_W_I);
+  ASSERT_EQ(a.poses.size(), b.poses.size());
+  for (std::size_t k = 0; k < a.poses.size(); ++k) {
+    const Mat4 Ta = a.poses[k].matrix(), Tb = b.poses[k].matrix();
+    EXPECT_EQ(std::memcmp(Ta.data(), Tb.data(), sizeof(double) * 16), 0) << "scan " << k;
+  }
+}
+
+TEST(LidarMapper, RejectsEmptyAndOutOfOrderScans) {
+  const Sequence seq = simulate(sim::Scenario::kHighbay, 5.0, 2);
+  LidarMapper mapper(LidarMapperConfig{}, T_I_L());
+  EXPECT_THROW(mapper.process(LidarScan{}, seq.T_W_I), InputError);
+  mapper.process(seq.scans[1], seq.T_W_I);
+  EXPECT_THROW(mapper.process(seq.scans[0], seq.T_W_I), InputError);
+}
+
+TEST(LidarMapperConfig, LoadsYamlAndRejectsUnknownKeys) {
+  const LidarMapperConfig c = LidarMapperConfig::from_yaml(std::string(VILSLAM_SOURCE_DIR) + "/config/lidar_mapper_vlp16.yaml");
+  EXPECT_TRUE(c.dewarp);
+  EXPECT_TRUE(c.lidar.registration.remap_degenerate_directions);
+  EXPECT_EQ(c.lidar.rings.num_rings, 16);
+  const std::string path = (test::temp_dir() / "mapper.yaml").string();
+  std::ofstream(path) << "features:\n  half_window: 4\nmapper:\n  dewarp: false\n";
+  const LidarMapperConfig d = LidarMapperConfig::from_yaml(path);
+  EXPECT_FALSE(d.dewarp);
+  EXPECT_EQ(d.lidar.features.half_window, 4);
+  EXPECT_TRUE(d.lidar.registration.remap_degenerate_directions);  // the mapper's defaults
+  EXPECT_EQ(d.lidar.registration.degenerate_min_eigenvalue_per_match, 0.03);
+  std::ofstream(path) << "mapper:\n  dewarp: false\n  dewrap: true\n";
+  EXPECT_THROW(LidarMapperConfig::from_yaml(path), InputError);
+}
+
+}  // namespace
+}  // namespace vilslam::lidar
