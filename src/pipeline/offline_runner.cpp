@@ -3,10 +3,13 @@
 #include <chrono>
 #include <deque>
 #include <limits>
+#include <optional>
+#include <stdexcept>
 #include <type_traits>
 
 #include "common/error.h"
 #include "frontend/frontend.h"
+#include "pipeline/lidar_feeder.h"
 
 namespace vilslam {
 namespace {
@@ -61,31 +64,74 @@ class VioFeeder {
   std::deque<FrontendOutput> pending_;
 };
 
+void check_mode_fits(const DatasetReader& reader, RunMode mode) {
+  const DatasetSummary& s = reader.summary();
+  const std::string name = run_mode_name(mode);
+  if (mode != RunMode::kLidarOnly && (s.format == "kitti" || s.stereo_frames == 0 || s.imu_samples == 0)) {
+    throw InputError(s.path, "mode " + name + " needs stereo images and IMU samples; this " + s.format + " dataset has " +
+                                 std::to_string(s.stereo_frames) + " frames and " + std::to_string(s.imu_samples) +
+                                 " IMU samples (use --mode lidar-only)");
+  }
+  if (mode != RunMode::kVio && (s.lidar_scans == 0 || !reader.calibration().has_lidar)) {
+    throw InputError(s.path, "mode " + name + " needs LiDAR scans and a LiDAR calibration; this " + s.format +
+                                 " dataset has " + std::to_string(s.lidar_scans) + " scans");
+  }
+}
+
 }  // namespace
 
-OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& config) {
-  const DatasetSummary& summary = reader.summary();
-  if (summary.stereo_frames == 0 || summary.imu_samples == 0) {
-    throw InputError(summary.path, "the VIO needs stereo images and IMU samples (" + summary.format +
-                                       " dataset has " + std::to_string(summary.stereo_frames) + " frames, " +
-                                       std::to_string(summary.imu_samples) + " IMU samples)");
+RunMode parse_run_mode(const std::string& name) {
+  if (name == "vio") return RunMode::kVio;
+  if (name == "vil") return RunMode::kVil;
+  if (name == "lidar-only") return RunMode::kLidarOnly;
+  throw std::invalid_argument("unknown run mode '" + name + "' (vio | vil | lidar-only)");
+}
+
+std::string run_mode_name(RunMode mode) {
+  switch (mode) {
+    case RunMode::kVio: return "vio";
+    case RunMode::kVil: return "vil";
+    case RunMode::kLidarOnly: return "lidar-only";
   }
+  return {};
+}
+
+OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& config) {
+  check_mode_fits(reader, config.mode);
+  const DatasetSummary& summary = reader.summary();
   OfflineRunResult result;
-  VioFeeder feeder(reader.calibration(), config, &result);
+  std::optional<VioFeeder> vio;
+  if (config.mode != RunMode::kLidarOnly) vio.emplace(reader.calibration(), config, &result);
+  std::optional<LidarFeeder> lidar;
+  if (config.mode != RunMode::kVio) {
+    lidar.emplace(config.lidar, reader.calibration(), vio ? &result.imu_poses : nullptr, &result.lidar);
+  }
   reader.rewind();
   // The IMU stream may run on long after the last image (EuRoC slices): stop once every frame is in.
-  const auto all_frames_in = [&] { return result.matches_per_frame.size() >= summary.stereo_frames && feeder.idle(); };
+  const auto all_frames_in = [&] { return vio && result.matches_per_frame.size() >= summary.stereo_frames && vio->idle(); };
   while (auto event = reader.next()) {
     std::visit(
         [&](auto& data) {
           using T = std::decay_t<decltype(data)>;
-          if constexpr (std::is_same_v<T, ImuSample>) feeder.imu(data);
-          if constexpr (std::is_same_v<T, StereoFrame>) feeder.stereo(std::move(data));
+          if constexpr (std::is_same_v<T, ImuSample>) {
+            if (vio) vio->imu(data);
+            if (vio && lidar) lidar->poses_advanced();
+          }
+          if constexpr (std::is_same_v<T, StereoFrame>) {
+            if (vio) vio->stereo(std::move(data));
+          }
+          if constexpr (std::is_same_v<T, LidarScan>) {
+            if (lidar) lidar->scan(std::move(data));
+          }
         },
         event->data);
     if (all_frames_in()) break;
   }
-  feeder.finish();
+  if (vio) vio->finish();
+  if (lidar) {
+    lidar->poses_advanced();
+    result.unmapped_scans = lidar->unmapped_scans();
+  }
   return result;
 }
 

@@ -1,19 +1,31 @@
 #pragma once
 // Deterministic offline mode (paper, system overview): the dataset is read as one time-ordered event
-// stream; IMU samples go to the VIO, stereo pairs through the visual frontend into the VIO. Collects the
-// camera-rate optimized states, the IMU-rate propagated poses and per-module timings.
+// stream; IMU samples go to the VIO, stereo pairs through the visual frontend into the VIO, LiDAR sweeps
+// to the mapper with the VIO's IMU-rate poses as motion prior (vil) or without it (lidar-only).
+// Collects the camera-rate optimized states, the IMU-rate propagated poses, the LiDAR poses and
+// per-module timings.
+#include <string>
 #include <vector>
 
 #include "common/types.h"
 #include "frontend/frontend_config.h"
 #include "io/dataset.h"
+#include "lidar/lidar_mapper.h"
 #include "vio/vio.h"
 
 namespace vilslam {
 
+enum class RunMode { kVio, kVil, kLidarOnly };
+
+// "vio" | "vil" | "lidar-only"; throws std::invalid_argument otherwise.
+RunMode parse_run_mode(const std::string& name);
+std::string run_mode_name(RunMode mode);
+
 struct OfflineRunConfig {
+  RunMode mode = RunMode::kVio;
   FrontendConfig frontend;
   VioConfig vio;
+  lidar::LidarMapperConfig lidar;
 };
 
 struct OfflineRunResult {
@@ -23,10 +35,12 @@ struct OfflineRunResult {
   std::vector<double> frontend_ms;  // per stereo frame
   std::vector<double> smoother_ms;  // per stereo frame (Vio::add_frame)
   std::size_t imu_samples = 0;
+  std::vector<lidar::LidarMappingResult> lidar;  // one per mapped sweep
+  std::size_t unmapped_scans = 0;  // vil: sweeps no VIO pose covered
 };
 
-// Runs the whole sequence. Throws InputError for bad input, including a dataset without cameras and
-// IMU (KITTI odometry).
+// Runs the whole sequence. Throws InputError for bad input, including a mode the dataset cannot serve
+// (the VIO needs cameras and an IMU, which the KITTI layout lacks; the LiDAR modes need scans).
 OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& config);
 
 }  // namespace vilslam

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <iomanip>
+#include <sstream>
 
 #include "common/json_writer.h"
 #include "io/trajectory_io.h"
@@ -22,10 +24,10 @@ void write_timing(JsonWriter& json, const std::string& name, const std::vector<d
   json.end_object();
 }
 
-std::string timings_json(const std::string& mode, const OfflineRunResult& r) {
+std::string timings_json(RunMode mode, const OfflineRunResult& r) {
   JsonWriter json;
   json.begin_object();
-  json.key("mode").value(mode);
+  json.key("mode").value(run_mode_name(mode));
   json.key("stereo_frames").value(static_cast<std::uint64_t>(r.matches_per_frame.size()));
   json.key("imu_samples").value(static_cast<std::uint64_t>(r.imu_samples));
   json.key("camera_states").value(static_cast<std::uint64_t>(r.camera_states.size()));
@@ -35,20 +37,44 @@ std::string timings_json(const std::string& mode, const OfflineRunResult& r) {
   json.key("matches_max").value(max_it == r.matches_per_frame.end() ? 0 : *max_it);
   write_timing(json, "frontend", r.frontend_ms);
   write_timing(json, "smoother", r.smoother_ms);
+  std::vector<double> lidar_ms;
+  for (const lidar::LidarMappingResult& m : r.lidar) lidar_ms.push_back(m.time_ms);
+  write_timing(json, "lidar_mapping", lidar_ms);
+  json.key("lidar_unmapped_scans").value(static_cast<std::uint64_t>(r.unmapped_scans));
   json.end_object();
   return json.str();
 }
 
+// One row per mapped sweep: t_ns, degenerate (0/1), the six eigenvalues of J^T J in ascending order.
+std::string degeneracy_csv(const std::vector<lidar::LidarMappingResult>& mapped) {
+  std::ostringstream out;
+  out << std::setprecision(17) << "t_ns,degenerate,eig0,eig1,eig2,eig3,eig4,eig5\n";
+  for (const lidar::LidarMappingResult& m : mapped) {
+    out << m.t_ns << ',' << (m.degenerate ? 1 : 0);
+    for (int i = 0; i < 6; ++i) out << ',' << m.information_eigenvalues[i];
+    out << '\n';
+  }
+  return out.str();
+}
+
 }  // namespace
 
-void write_run_outputs(const std::string& out_dir, const std::string& mode, const OfflineRunResult& result) {
+void write_run_outputs(const std::string& out_dir, RunMode mode, const OfflineRunResult& result) {
   fs::path out = fs::path(out_dir).lexically_normal();
   if (!out.has_filename()) out = out.parent_path();  // "DIR/"
   const fs::path partial = out.string() + ".partial";
   fs::remove_all(partial);
   fs::create_directories(partial);
-  write_trajectory((partial / "vio_camera.tum").string(), result.camera_states, TrajectoryFormat::kTum);
-  write_trajectory((partial / "vio_imu.tum").string(), result.imu_poses, TrajectoryFormat::kTum);
+  if (mode != RunMode::kLidarOnly) {
+    write_trajectory((partial / "vio_camera.tum").string(), result.camera_states, TrajectoryFormat::kTum);
+    write_trajectory((partial / "vio_imu.tum").string(), result.imu_poses, TrajectoryFormat::kTum);
+  }
+  if (mode != RunMode::kVio) {
+    Trajectory T_W_L;
+    for (const lidar::LidarMappingResult& m : result.lidar) T_W_L.push_back({m.t_ns, m.T_W_L});
+    write_trajectory((partial / "lidar.tum").string(), T_W_L, TrajectoryFormat::kTum);
+    write_file_atomic((partial / "degeneracy.csv").string(), degeneracy_csv(result.lidar));
+  }
   write_file_atomic((partial / "timings.json").string(), timings_json(mode, result));
   fs::remove_all(out);
   fs::rename(partial, out);

@@ -1,8 +1,10 @@
-// `vilslam run`: output files, bit-identical reruns, bad input, and the VIO on a simulated sequence.
+// `vilslam run`: output files, bit-identical reruns, bad input, and all modes on a simulated sequence.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "eval/trajectory_eval.h"
 #include "io/dataset.h"
@@ -21,24 +23,54 @@ std::string read_all(const fs::path& path) {
   return ss.str();
 }
 
-// Runs vio twice into a/ and b/ and expects identical trajectories (timings differ by nature).
-void expect_deterministic(const std::string& dataset, const fs::path& dir) {
-  for (const char* name : {"a", "b"}) {
-    const test::CliResult r = test::run_cli("run --mode vio " + dataset + " --out " + (dir / name).string());
+// Runs a mode twice into <mode>_a/ and <mode>_b/ and expects identical files (timings differ by nature).
+void expect_deterministic(const std::string& mode, const std::string& dataset, const fs::path& dir,
+                          const std::vector<std::string>& files) {
+  for (const char* name : {"_a", "_b"}) {
+    const test::CliResult r = test::run_cli("run --mode " + mode + " " + dataset + " --out " + (dir / (mode + name)).string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
   }
-  for (const char* file : {"vio_camera.tum", "vio_imu.tum"}) {
-    const std::string a = read_all(dir / "a" / file);
+  for (const std::string& file : files) {
+    const std::string a = read_all(dir / (mode + "_a") / file);
     EXPECT_FALSE(a.empty()) << file;
-    EXPECT_EQ(a, read_all(dir / "b" / file)) << file;
+    EXPECT_EQ(a, read_all(dir / (mode + "_b") / file)) << file;
   }
-  EXPECT_TRUE(fs::exists(dir / "a" / "timings.json"));
-  EXPECT_FALSE(fs::exists(dir / "a.partial"));
+  EXPECT_TRUE(fs::exists(dir / (mode + "_a") / "timings.json"));
+  EXPECT_FALSE(fs::exists(dir / (mode + "_a.partial")));
 }
+
+std::size_t count_lines(const fs::path& path) {
+  const std::string text = read_all(path);
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+// APE RMSE (m) of an estimate against ground truth after the given alignment; prints it.
+double ate_rmse(const fs::path& est_path, const Trajectory& gt, eval::AlignMode align, const char* label) {
+  const Trajectory est = read_trajectory(est_path.string(), TrajectoryFormat::kTum);
+  eval::TrajectoryEvalConfig config;
+  config.align = align;
+  const eval::TrajectoryEvalReport report = eval::evaluate_trajectory(est, gt, config);
+  std::printf("%s: %zu of %zu poses matched over %.2f m, ATE RMSE %.4f m\n", label, report.matched_poses, est.size(),
+              report.path_length_m, report.ape.trans.rmse);
+  EXPECT_GT(report.matched_poses, est.size() / 2) << label;
+  return report.ape.trans.rmse;
+}
+
+const std::vector<std::string> kVioFiles = {"vio_camera.tum", "vio_imu.tum"};
+const std::vector<std::string> kLidarFiles = {"lidar.tum", "degeneracy.csv"};
 
 TEST(RunCli, EurocSliceIsDeterministic) {
   VILSLAM_REQUIRE_SHARED_DATA(path, "euroc/V1_01_easy_micro");
-  expect_deterministic(path, test::temp_dir());
+  expect_deterministic("vio", path, test::temp_dir(), kVioFiles);
+}
+
+TEST(RunCli, LidarModesNeedScans) {
+  VILSLAM_REQUIRE_SHARED_DATA(path, "euroc/V1_01_easy_micro");
+  const fs::path dir = test::temp_dir();
+  for (const char* mode : {"vil", "lidar-only"}) {
+    EXPECT_EQ(test::run_cli(std::string("run --mode ") + mode + " " + path + " --out " + (dir / "o").string()).exit_code, 2);
+  }
+  EXPECT_FALSE(fs::exists(dir / "o"));
 }
 
 TEST(RunCli, BadInputExitsTwo) {
@@ -47,24 +79,44 @@ TEST(RunCli, BadInputExitsTwo) {
   EXPECT_FALSE(fs::exists(dir / "o"));
 }
 
-TEST(RunCli, SimulatedHighbayPreviewHasSmallAte) {
+TEST(RunCli, SimulatedHighbayPreviewAllModes) {
   const fs::path dir = test::temp_dir();
   const std::string data = (dir / "highbay").string();
   const test::CliResult sim = test::run_cli("simulate highbay --preview --seed 3 --out " + data);
   ASSERT_EQ(sim.exit_code, 0) << sim.output;
-  expect_deterministic(data, dir);
+  expect_deterministic("vio", data, dir, kVioFiles);
+  expect_deterministic("vil", data, dir, kLidarFiles);
+  expect_deterministic("lidar-only", data, dir, kLidarFiles);
+  EXPECT_FALSE(fs::exists(dir / "lidar-only_a" / "vio_camera.tum"));
+  // vil maps every sweep after the VIO's first pose; the first sweep starts before it.
+  const std::size_t scans = open_dataset(data)->summary().lidar_scans;
+  EXPECT_EQ(count_lines(dir / "lidar-only_a" / "lidar.tum"), scans + 1);  // + header
+  EXPECT_EQ(count_lines(dir / "lidar-only_a" / "degeneracy.csv"), scans + 1);
+  EXPECT_GE(count_lines(dir / "vil_a" / "lidar.tum"), scans - 1);
+  EXPECT_EQ(count_lines(dir / "vil_a" / "lidar.tum"), count_lines(dir / "vil_a" / "degeneracy.csv"));
 
   const auto reader = open_dataset(data);
-  Trajectory gt;
-  for (const GroundTruthState& g : reader->groundtruth()) gt.push_back({g.t_ns, g.T_W_I});
-  const Trajectory est = read_trajectory((dir / "a" / "vio_camera.tum").string(), TrajectoryFormat::kTum);
-  eval::TrajectoryEvalConfig config;
-  config.align = eval::AlignMode::kPosYaw;
-  const eval::TrajectoryEvalReport report = eval::evaluate_trajectory(est, gt, config);
-  std::printf("highbay preview: %zu matched poses over %.2f m, ATE RMSE (posyaw) %.4f m\n", report.matched_poses,
-              report.path_length_m, report.ape.trans.rmse);
-  EXPECT_GT(report.matched_poses, est.size() / 2);
-  EXPECT_LT(report.ape.trans.rmse, 0.10);
+  Trajectory gt_I, gt_L;
+  for (const GroundTruthState& g : reader->groundtruth()) {
+    gt_I.push_back({g.t_ns, g.T_W_I});
+    gt_L.push_back({g.t_ns, g.T_W_I * reader->calibration().T_I_L});
+  }
+  EXPECT_LT(ate_rmse(dir / "vio_a" / "vio_camera.tum", gt_I, eval::AlignMode::kPosYaw, "vio camera states"), 0.10);
+  EXPECT_LT(ate_rmse(dir / "vil_a" / "lidar.tum", gt_L, eval::AlignMode::kPosYaw, "vil LiDAR poses"), 0.10);
+  // LiDAR-only starts at the first sweep's frame: align in SE(3).
+  EXPECT_LT(ate_rmse(dir / "lidar-only_a" / "lidar.tum", gt_L, eval::AlignMode::kSe3, "lidar-only poses"), 0.10);
+}
+
+TEST(RunCli, KittiLayoutIsLidarOnly) {
+  const fs::path dir = test::temp_dir();
+  const std::string data = (dir / "highbay").string();
+  ASSERT_EQ(test::run_cli("simulate highbay --preview --seed 4 --out " + data).exit_code, 0);
+  const std::string kitti = data + "/kitti";
+  EXPECT_EQ(test::run_cli("run --mode vio " + kitti + " --out " + (dir / "vio").string()).exit_code, 2);
+  EXPECT_EQ(test::run_cli("run --mode vil " + kitti + " --out " + (dir / "vil").string()).exit_code, 2);
+  const test::CliResult r = test::run_cli("run --mode lidar-only " + kitti + " --out " + (dir / "lidar").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_GT(count_lines(dir / "lidar" / "lidar.tum"), 1u);
 }
 
 }  // namespace

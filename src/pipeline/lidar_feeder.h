@@ -1,0 +1,38 @@
+#pragma once
+// Feeds LiDAR sweeps to the mapper. With the VIO (vil mode) a sweep waits until the IMU-rate VIO poses
+// reach its end, then maps with those poses interpolated as the motion prior (paper, "Lidar mapping");
+// without it (lidar-only) each sweep is mapped at once with the constant-velocity model.
+#include <cstddef>
+#include <deque>
+#include <vector>
+
+#include "common/calibration.h"
+#include "common/types.h"
+#include "lidar/lidar_mapper.h"
+
+namespace vilslam {
+
+class LidarFeeder {
+ public:
+  // imu_poses: the VIO's IMU-rate poses as they grow (vil), or nullptr for LiDAR-only mapping.
+  LidarFeeder(const lidar::LidarMapperConfig& config, const RigCalibration& calib, const Trajectory* imu_poses,
+              std::vector<lidar::LidarMappingResult>* results);
+
+  void scan(LidarScan scan);
+  // Maps the waiting sweeps that the IMU-rate poses now cover.
+  void poses_advanced();
+  // Sweeps no VIO pose covers (before initialization or after the last pose) are left unmapped.
+  std::size_t unmapped_scans() const { return unmapped_ + waiting_.size(); }
+
+ private:
+  SE3 interpolated_T_W_I(TimeNs t_ns) const;
+
+  lidar::LidarMapper mapper_;
+  TimeNs offset_ns_;
+  const Trajectory* imu_poses_;
+  std::vector<lidar::LidarMappingResult>* results_;
+  std::deque<LidarScan> waiting_;
+  std::size_t unmapped_ = 0;
+};
+
+}  // namespace vilslam
