@@ -80,7 +80,12 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
   FeatureScan features = raw;
 
   std::optional<SE3> T_W_L_prior_end;
-  if (has_prior) T_W_L_prior_end = prior_T_W_L(end_t_ns);
+  if (has_prior) {
+    T_W_L_prior_end = prior_T_W_L(end_t_ns);
+    if (!T_W_L_prior_end->matrix().allFinite()) {
+      throw InputError("motion prior", "non-finite pose at t_ns " + std::to_string(end_t_ns));
+    }
+  }
   const bool constant_velocity_known = previous_ && previous_->motion.has_value();
   if (config_.dewarp && has_prior) {
     features = dewarp(features, end_t_ns, prior_T_W_L);
