@@ -21,8 +21,8 @@ PoseAtTime constant_velocity(const Vec6& motion, TimeNs duration_ns, TimeNs end_
 
 }  // namespace
 
-// The mapper remaps degenerate directions; 0.03 per match flags the simulated tunnel (along-axis eigenvalue
-// 0.004-0.02 per match from noisy plane fits) and not the highbay (docs/lidar.md).
+// The mapper remaps degenerate directions; 0.03 per match flags the simulated tunnel (its along-axis
+// eigenvalue is not zero, from noisy plane fits) and not the highbay (docs/lidar.md).
 LidarMapperConfig::LidarMapperConfig() {
   lidar.registration.remap_degenerate_directions = true;
   lidar.registration.degenerate_min_eigenvalue_per_match = 0.03;
