@@ -21,8 +21,8 @@ PoseAtTime constant_velocity(const Vec6& motion, TimeNs duration_ns, TimeNs end_
 
 }  // namespace
 
-// The mapper remaps degenerate directions; 0.03 per match flags the simulated tunnel (along-axis eigenvalue
-// 0.004-0.02 per match from noisy plane fits) and not the highbay (docs/lidar.md).
+// The mapper remaps degenerate directions; 0.03 per match flags the simulated tunnel (its along-axis
+// eigenvalue is not zero, from noisy plane fits) and not the highbay (docs/lidar.md).
 LidarMapperConfig::LidarMapperConfig() {
   lidar.registration.remap_degenerate_directions = true;
   lidar.registration.degenerate_min_eigenvalue_per_match = 0.03;
@@ -65,6 +65,31 @@ LidarMapperConfig LidarMapperConfig::from_yaml(const std::string& path) {
 LidarMapper::LidarMapper(const LidarMapperConfig& config, const SE3& T_I_L)
     : config_(config), T_I_L_(T_I_L), map_(config.lidar.map) {}
 
+SE3 LidarMapper::motion_since_previous(TimeNs end_t_ns, const std::optional<SE3>& T_W_L_prior_end) const {
+  if (T_W_L_prior_end && previous_->T_W_L_prior) return previous_->T_W_L_prior->inverse() * *T_W_L_prior_end;
+  if (!previous_->motion) return SE3();
+  const double ratio = double(end_t_ns - previous_->end_t_ns) / double(previous_->motion_duration_ns);
+  return SE3::exp(*previous_->motion * ratio);
+}
+
+RegistrationResult LidarMapper::reregister_lidar_only(const FeatureScan& raw, TimeNs end_t_ns, const SE3& T_W_L,
+                                                      FeatureScan& features) {
+  // The registered motion of this sweep replaces the extrapolated one for dewarping (the role of LOAM's
+  // scan-to-scan odometry), and the sweep is registered again from that solution.
+  const Vec6 motion = (previous_->T_W_L.inverse() * T_W_L).log();
+  const TimeNs duration_ns = end_t_ns - previous_->end_t_ns;
+  features = dewarp(raw, end_t_ns, constant_velocity(motion, duration_ns, end_t_ns));
+  if (first_raw_) {
+    // The first sweep went into the map undewarped (no motion was known): rebuild it dewarped.
+    map_ = FeatureMap(config_.lidar.map);
+    const TimeNs first_end_ns = previous_->end_t_ns;
+    map_.insert(dewarp(*first_raw_, first_end_ns, constant_velocity(motion, duration_ns, first_end_ns)),
+                previous_->T_W_L);
+    first_raw_.reset();
+  }
+  return register_scan(features, map_, T_W_L, config_.lidar.registration);
+}
+
 LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior) {
   const auto start = std::chrono::steady_clock::now();
   if (scan.points.empty()) throw InputError("lidar scan", "empty scan at t_ns " + std::to_string(scan.t_ns));
@@ -73,6 +98,7 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
     throw InputError("lidar scan", "scan ending at " + std::to_string(end_t_ns) + " ns is not after the previous one");
   }
   const bool has_prior = static_cast<bool>(T_W_I_prior);
+  const bool lidar_only_refine = !has_prior && config_.dewarp && config_.lidar_only_redewarp;
   const auto prior_T_W_L = [&](TimeNs t_ns) { return T_W_I_prior(t_ns) * T_I_L_; };
 
   // Features come from the raw sweep, before dewarping (paper Sec. "Lidar mapping").
@@ -80,7 +106,12 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
   FeatureScan features = raw;
 
   std::optional<SE3> T_W_L_prior_end;
-  if (has_prior) T_W_L_prior_end = prior_T_W_L(end_t_ns);
+  if (has_prior) {
+    T_W_L_prior_end = prior_T_W_L(end_t_ns);
+    if (!T_W_L_prior_end->matrix().allFinite()) {
+      throw InputError("motion prior", "non-finite pose at t_ns " + std::to_string(end_t_ns));
+    }
+  }
   const bool constant_velocity_known = previous_ && previous_->motion.has_value();
   if (config_.dewarp && has_prior) {
     features = dewarp(features, end_t_ns, prior_T_W_L);
@@ -94,32 +125,12 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
   if (!previous_) {
     // The first scan defines the map frame: the VIO world frame when a prior is given.
     out.T_W_L = T_W_L_prior_end.value_or(SE3());
-    if (!has_prior && config_.dewarp && config_.lidar_only_redewarp) first_raw_ = raw;
+    if (lidar_only_refine) first_raw_ = raw;
   } else {
-    // Paper: L*_{k+1} = L_k T_trans, T_trans the prior's motion since the previous scan end.
-    SE3 T_trans;
-    if (has_prior && previous_->T_W_L_prior) {
-      T_trans = previous_->T_W_L_prior->inverse() * *T_W_L_prior_end;
-    } else if (constant_velocity_known) {
-      const double ratio = double(end_t_ns - previous_->end_t_ns) / double(previous_->motion_duration_ns);
-      T_trans = SE3::exp(*previous_->motion * ratio);
-    }
+    // Paper: L*_{k+1} = L_k T_trans.
+    const SE3 T_trans = motion_since_previous(end_t_ns, T_W_L_prior_end);
     RegistrationResult r = register_scan(features, map_, previous_->T_W_L * T_trans, config_.lidar.registration);
-    if (!has_prior && config_.dewarp && config_.lidar_only_redewarp) {
-      // LiDAR-only: the registered motion of this sweep replaces the extrapolated one for dewarping (the
-      // role of LOAM's scan-to-scan odometry), and the sweep is registered again from that solution.
-      const Vec6 motion = (previous_->T_W_L.inverse() * r.T_W_L).log();
-      const TimeNs duration_ns = end_t_ns - previous_->end_t_ns;
-      features = dewarp(raw, end_t_ns, constant_velocity(motion, duration_ns, end_t_ns));
-      if (first_raw_) {
-        // The first sweep went into the map undewarped (no motion was known): rebuild it dewarped.
-        map_ = FeatureMap(config_.lidar.map);
-        map_.insert(dewarp(*first_raw_, previous_->end_t_ns, constant_velocity(motion, duration_ns, previous_->end_t_ns)),
-                    previous_->T_W_L);
-        first_raw_.reset();
-      }
-      r = register_scan(features, map_, r.T_W_L, config_.lidar.registration);
-    }
+    if (lidar_only_refine) r = reregister_lidar_only(raw, end_t_ns, r.T_W_L, features);
     out.T_W_L = r.T_W_L;
     out.degenerate = r.degeneracy.degenerate();
     out.information_eigenvalues = r.degeneracy.eigenvalues;

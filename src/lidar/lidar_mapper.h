@@ -11,6 +11,7 @@
 #include "common/types.h"
 #include "lidar/feature_map.h"
 #include "lidar/lidar_config.h"
+#include "lidar/registration.h"
 
 namespace vilslam::lidar {
 
@@ -54,6 +55,12 @@ class LidarMapper {
     std::optional<Vec6> motion;       // log(L_{k-1}^-1 L_k), for the constant-velocity model
     TimeNs motion_duration_ns = 0;
   };
+
+  // T_trans: the prior's motion since the previous scan end, else the constant-velocity extrapolation.
+  SE3 motion_since_previous(TimeNs end_t_ns, const std::optional<SE3>& T_W_L_prior_end) const;
+  // LiDAR-only: dewarps the sweep with the motion of its first registration T_W_L and registers it again.
+  RegistrationResult reregister_lidar_only(const FeatureScan& raw, TimeNs end_t_ns, const SE3& T_W_L,
+                                           FeatureScan& features);
 
   LidarMapperConfig config_;
   SE3 T_I_L_;

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -54,6 +55,7 @@ struct Errors {
   double max_translation_m = 0;
   double max_rotation_deg = 0;
   int degenerate_scans = 0;
+  double mean_time_ms = 0;
   std::vector<SE3> poses;
 };
 
@@ -75,6 +77,7 @@ Errors run(const Sequence& seq, const LidarMapperConfig& config, const std::func
     if (along_axis_m) *along_axis_m = dp_W.dot(axis_W);
     e.degenerate_scans += r.degenerate ? 1 : 0;
     e.poses.push_back(r.T_W_L);
+    e.mean_time_ms += r.time_ms / double(seq.scans.size());
   }
   return e;
 }
@@ -92,7 +95,9 @@ TEST(LidarMapper, TracksTheHighbayWithAndWithoutPrior) {
   std::cout << "highbay 2 s: prior = truth " << with_truth.max_translation_m << " m / " << with_truth.max_rotation_deg
             << " deg; drifting prior " << with_drift.max_translation_m << " m / " << with_drift.max_rotation_deg
             << " deg; LiDAR-only " << lidar_only.max_translation_m << " m / " << lidar_only.max_rotation_deg
-            << " deg; degenerate scans " << with_truth.degenerate_scans << "/" << seq.scans.size() << "\n";
+            << " deg; degenerate scans " << with_truth.degenerate_scans << "/" << seq.scans.size()
+            << "; mean time per scan " << with_truth.mean_time_ms << " ms (prior), " << lidar_only.mean_time_ms
+            << " ms (LiDAR-only)\n";
   EXPECT_LT(with_truth.max_translation_m, 0.05);
   EXPECT_LT(with_truth.max_rotation_deg, 0.5);
   EXPECT_LT(with_drift.max_translation_m, 0.05);
@@ -160,6 +165,27 @@ TEST(LidarMapper, RejectsEmptyAndOutOfOrderScans) {
   EXPECT_THROW(mapper.process(LidarScan{}, seq.T_W_I), InputError);
   mapper.process(seq.scans[1], seq.T_W_I);
   EXPECT_THROW(mapper.process(seq.scans[0], seq.T_W_I), InputError);
+  LidarMapper fresh(LidarMapperConfig{}, T_I_L());
+  const auto nan_prior = [](TimeNs) { return SE3(Quat::Identity(), Vec3::Constant(std::nan(""))); };
+  EXPECT_THROW(fresh.process(seq.scans[0], nan_prior), InputError);
+}
+
+TEST(LidarMapper, ForgetsMapPointsFarFromTheSensor) {
+  const Sequence seq = simulate(sim::Scenario::kHighbay, 5.0, 6);
+  LidarMapperConfig config;
+  config.lidar.map.edges.max_distance_m = 12.0;
+  config.lidar.map.surfaces.max_distance_m = 12.0;
+  LidarMapper mapper(config, T_I_L());
+  LidarMappingResult last;
+  for (const LidarScan& scan : seq.scans) last = mapper.process(scan, seq.T_W_I);
+  // A voxel is kept while its centre is within the radius, so its points are within radius + half diagonal.
+  const double bound_m = 12.0 + 0.5 * std::sqrt(3.0) * config.lidar.map.surfaces.voxel_size_m;
+  double farthest_m = 0;
+  for (const VoxelMap* m : {&mapper.map().edges, &mapper.map().surfaces}) {
+    for (const Vec3& p : m->points()) farthest_m = std::max(farthest_m, (p - last.T_W_L.translation()).norm());
+  }
+  EXPECT_GT(mapper.map().surfaces.num_points(), 500u);
+  EXPECT_LE(farthest_m, bound_m);
 }
 
 TEST(LidarMapperConfig, LoadsYamlAndRejectsUnknownKeys) {
