@@ -8,7 +8,8 @@
 //   });
 //
 // main() builds the CLI11 app from the registry, runs the chosen command and maps errors to exit codes:
-// InputError (bad input) -> 2 with "error: <file>:<line>: <problem>", other exceptions -> 1.
+// InputError (bad input) and std::invalid_argument (unusable option values) -> 2 with "error: ...",
+// other exceptions -> 1.
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <string>

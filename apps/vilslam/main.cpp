@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <iostream>
 #include <map>
+#include <stdexcept>
 
 #include "common/error.h"
 #include "common/log.h"
@@ -42,6 +43,9 @@ int main(int argc, char** argv) {
       if (sub->parsed()) return run();
     }
   } catch (const InputError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::invalid_argument& e) {  // a value given on the command line or in a config is unusable
     std::cerr << "error: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {
