@@ -7,6 +7,7 @@
 #include <string>
 
 #include "io/cloud_io.h"
+#include "io/scan_file.h"
 #include "lidar/lidar_config.h"
 
 namespace {
@@ -47,8 +48,8 @@ const Case* load_case(bool vlp16_sized) {
   static bool loaded = false;
   if (!loaded) {
     for (int k = 0; k < 2; ++k) {
-      cases[k].source = lidar::to_scan(read_cloud(dir + "source.ply"));
-      cases[k].target = lidar::to_scan(read_cloud(dir + "target.ply"));
+      cases[k].source = scan_from_cloud(read_cloud(dir + "source.ply"));
+      cases[k].target = scan_from_cloud(read_cloud(dir + "target.ply"));
       cases[k].config.rings = hdl32e();
     }
     cases[1].source = even_rings(cases[1].source);

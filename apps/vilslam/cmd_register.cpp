@@ -8,6 +8,7 @@
 #include "common/error.h"
 #include "common/json_writer.h"
 #include "io/cloud_io.h"
+#include "io/scan_file.h"
 #include "lidar/lidar_config.h"
 #include "vilslam/command.h"
 
@@ -80,7 +81,7 @@ int run(const Options& o) {
   }
   const SE3 T_init = o.init.empty() ? SE3() : SE3(read_matrix(o.init));
   const auto features_of = [&](const std::string& path) {
-    return lidar::extract_features(lidar::to_scan(read_cloud(path)), config.rings, config.features);
+    return lidar::extract_features(scan_from_cloud(read_cloud(path)), config.rings, config.features);
   };
   const lidar::FeatureScan target = features_of(o.target);
   const lidar::FeatureScan source = features_of(o.source);

@@ -108,9 +108,11 @@ std::size_t check_scan_file(const std::string& path) {
   return parse_header(header, f ? size : static_cast<std::size_t>(f.gcount()), path);
 }
 
-LidarScan read_kitti_scan(const std::string& path) {
-  const PointCloud cloud = read_cloud(path);
+LidarScan read_kitti_scan(const std::string& path) { return scan_from_cloud(read_cloud(path)); }
+
+LidarScan scan_from_cloud(const PointCloud& cloud, TimeNs t_ns) {
   LidarScan scan;
+  scan.t_ns = t_ns;
   scan.has_ring = false;
   scan.points.resize(cloud.size());
   for (std::size_t i = 0; i < cloud.size(); ++i) {

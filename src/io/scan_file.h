@@ -9,6 +9,7 @@
 #include <string>
 
 #include "common/types.h"
+#include "io/cloud_io.h"
 
 namespace vilslam {
 
@@ -24,6 +25,9 @@ std::size_t check_scan_file(const std::string& path);
 
 // Through read_cloud (cloud_io.h): has_ring = false, t_offset_s = 0.
 LidarScan read_kitti_scan(const std::string& path);
+
+// A cloud as a sweep without ring or per-point time (every point at t_ns).
+LidarScan scan_from_cloud(const PointCloud& cloud, TimeNs t_ns = 0);
 // Cheap check: the size is a multiple of 16 bytes; returns the number of points.
 std::size_t check_kitti_scan(const std::string& path);
 

@@ -52,19 +52,4 @@ Rings assign_rings(const LidarScan& scan, const RingConfig& config) {
   return rings;
 }
 
-LidarScan to_scan(const PointCloud& cloud, TimeNs t_ns) {
-  LidarScan scan;
-  scan.t_ns = t_ns;
-  scan.has_ring = false;
-  scan.points.resize(cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    LidarPoint& p = scan.points[i];
-    p.x = cloud.points[i].x();
-    p.y = cloud.points[i].y();
-    p.z = cloud.points[i].z();
-    p.intensity = cloud.intensity.empty() ? 0.0f : cloud.intensity[i];
-  }
-  return scan;
-}
-
 }  // namespace vilslam::lidar

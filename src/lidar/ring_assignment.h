@@ -24,7 +24,4 @@ using Rings = std::vector<std::vector<std::uint32_t>>;
 
 Rings assign_rings(const LidarScan& scan, const RingConfig& config);
 
-// A cloud read from a file as a sweep without ring or per-point time (every point at t_ns).
-LidarScan to_scan(const PointCloud& cloud, TimeNs t_ns = 0);
-
 }  // namespace vilslam::lidar
