@@ -3,12 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include "eval/trajectory_eval.h"
 #include "io/dataset.h"
 #include "io/trajectory_io.h"
+#include "cli_output.h"
 #include "test_util.h"
 
 namespace vilslam {
@@ -16,18 +15,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-double json_number(const std::string& doc, const std::string& object, const std::string& key) {
-  const auto at = doc.find("\"" + object + "\":");
-  const auto k = doc.find("\"" + key + "\":", at);
-  return std::stod(doc.substr(k + key.size() + 3));
-}
+using test::json_number;
+using test::slurp;
 
 std::string fixed3(double v) {
   char buf[32];
