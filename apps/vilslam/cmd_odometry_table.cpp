@@ -87,7 +87,7 @@ ModeRun run_mode(const fs::path& data, RunMode mode, const fs::path& out) {
     fs::remove_all(out);
     return run;
   }
-  write_run_outputs(out.string(), mode, run.result);
+  write_run_outputs(out.string(), config, run.result);
   return run;
 }
 
