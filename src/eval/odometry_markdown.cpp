@@ -1,5 +1,6 @@
 #include "eval/odometry_markdown.h"
 
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
 
@@ -21,7 +22,12 @@ std::string fde_cell(const DriftResult& d, bool closed) {
   return format("%.3f %%%s (%.3f m)", d.fde_percent, closed ? "" : "†", d.drift_m);
 }
 
-std::string ate_cell(const DriftResult& d) { return d.lost && d.poses < 2 ? "–" : format("%.3f", d.ate_rmse_m); }
+// ATE RMSE after the run's own alignment (posyaw / se3) or after SE(3); "–" when there is none.
+std::string ate_cell(const DriftResult& d, bool se3) {
+  const double rmse_m = se3 ? d.ate_se3_rmse_m : d.ate_rmse_m;
+  if ((d.lost && d.path_length_m == 0) || !std::isfinite(rmse_m)) return "–";
+  return format("%.3f", rmse_m);
+}
 
 std::string paper_fde(const std::optional<double>& percent) {
   return percent ? format("%.2f %%", *percent) : std::string("not finished");
@@ -47,8 +53,9 @@ void append_lost(std::string& out, const OdometryRow& row, const char* name, con
 std::string odometry_table_markdown(const std::vector<OdometryRow>& rows) {
   std::string out =
       "| preset | simulation | length (m) | GT end-start gap (m) | VIO FDE | VIL FDE | LiDAR-only FDE | paper VIL-SLAM | "
-      "paper LOAM | paper VIO | VIL <= paper | degenerate sweeps VIL / LiDAR-only | ATE RMSE VIO / VIL / LiDAR-only (m) |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      "paper LOAM | paper VIO | VIL <= paper | degenerate sweeps VIL / LiDAR-only | ATE RMSE VIO / VIL / LiDAR-only (m) | "
+      "ATE RMSE se3 VIO / VIL (m) |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const OdometryRow& row : rows) {
     const std::optional<PaperOdometry> paper = paper_odometry(row.preset);
     out += format("| %s | %s | %.1f | %.3f | %s | %s | %s | ", row.preset.c_str(), row.source.c_str(), row.gt_length_m,
@@ -57,9 +64,10 @@ std::string odometry_table_markdown(const std::vector<OdometryRow>& rows) {
     out += paper ? format("%.2f %% (%.0f m) | %s | n/r | ", paper->vil_slam_fde_percent, paper->length_m,
                           paper_fde(paper->loam_fde_percent).c_str())
                  : std::string("– | – | – | ");
-    out += format("%s | %zu of %zu / %zu of %zu | %s / %s / %s |\n", meets_paper(row, paper).c_str(), row.vil_degenerate,
-                  row.vil_sweeps, row.lidar_only_degenerate, row.lidar_only_sweeps, ate_cell(row.vio).c_str(),
-                  ate_cell(row.vil).c_str(), ate_cell(row.lidar_only).c_str());
+    out += format("%s | %zu of %zu / %zu of %zu | %s / %s / %s | %s / %s |\n", meets_paper(row, paper).c_str(),
+                  row.vil_degenerate, row.vil_sweeps, row.lidar_only_degenerate, row.lidar_only_sweeps,
+                  ate_cell(row.vio, false).c_str(), ate_cell(row.vil, false).c_str(), ate_cell(row.lidar_only, false).c_str(),
+                  ate_cell(row.vio, true).c_str(), ate_cell(row.vil, true).c_str());
   }
   std::string lost;
   for (const OdometryRow& row : rows) {
@@ -96,7 +104,9 @@ std::string odometry_document_markdown(const std::vector<OdometryRow>& rows, con
       "  per sweep, compared with the ground truth moved into the LiDAR frame (`T_W_I T_I_L`).\n"
       "- **ATE RMSE**: APE translation RMSE after alignment (docs/evaluation.md): `posyaw` for VIO and VIL (the\n"
       "  VIO's world is gravity aligned, yaw and position are unobservable), `se3` for LiDAR-only (it starts in\n"
-      "  the first sweep's frame).\n"
+      "  the first sweep's frame). The posyaw alignment keeps the roll and pitch of the estimate's world (the\n"
+      "  VIO's gravity estimate at initialization, which the VIL map inherits); the last column aligns VIO and\n"
+      "  VIL in SE(3) as well, so the difference between the two shows that tilt.\n"
       "- **Lost**: the run threw, gave fewer than 2 poses or a non-finite pose, spans less than 50 % of the\n"
       "  sequence, or after the ATE alignment some pose lies farther from ground truth than 10 % of the path\n"
       "  length (at least 1 m). A lost run's FDE is not tabulated; its reason and numbers are listed below the table.\n"

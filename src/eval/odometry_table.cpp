@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include "eval/drift.h"
@@ -26,6 +27,17 @@ double span_s(const Trajectory& traj) { return ns_to_s(traj.back().t_ns - traj.f
 
 double end_to_start_gap_m(const Trajectory& traj) {
   return (traj.back().T_W_B.translation() - traj.front().T_W_B.translation()).norm();
+}
+
+// NaN when the positions do not fix an SE(3) alignment (all on one line).
+double ate_se3_rmse_m(const Trajectory& est, const Trajectory& gt) {
+  TrajectoryEvalConfig config;
+  config.align = AlignMode::kSe3;
+  try {
+    return evaluate_trajectory(est, gt, config).ape.trans.rmse;
+  } catch (const std::invalid_argument&) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
 }
 
 }  // namespace
@@ -57,6 +69,7 @@ DriftResult evaluate_drift(const RunTrajectory& run, const Trajectory& gt, Align
   r.path_length_m = fde.path_length_m;
   r.ate_rmse_m = report.ape.trans.rmse;
   r.ape_max_m = report.ape.trans.max;
+  r.ate_se3_rmse_m = align == AlignMode::kSe3 ? r.ate_rmse_m : ate_se3_rmse_m(run.poses, gt);
   const double coverage = span_s(run.poses) / span_s(gt);
   if (coverage < criteria.min_coverage)
     return lost(format("covers %.0f %% of the sequence (less than %.0f %%)", 100 * coverage, 100 * criteria.min_coverage));

@@ -48,8 +48,9 @@ struct DriftResult {
   double fde_percent = 0;     // see OdometryRow::closed
   double drift_m = 0;
   double path_length_m = 0;   // the length the FDE is relative to
-  double ate_rmse_m = 0;      // APE translation RMSE after the alignment
-  double ape_max_m = 0;
+  double ate_rmse_m = 0;      // APE translation RMSE after the alignment `align`
+  double ape_max_m = 0;       //   and its largest APE (the lost rule)
+  double ate_se3_rmse_m = 0;  // APE translation RMSE after an SE(3) alignment (NaN: positions on a line)
   AlignMode align = AlignMode::kNone;
 };
 

@@ -65,6 +65,12 @@ TEST(CmdOdometryTable, PreviewHighbaySimulatesThenReuses) {
             std::string::npos)
       << row;
   EXPECT_NE(row.find("| " + fixed3(json_number(doc, "ape", "rmse")) + " / "), std::string::npos) << row;
+  const fs::path json_se3 = dir / "vio_se3.json";
+  ASSERT_EQ(test::run_cli("eval --est " + (work / "highbay_vil/vio_camera.tum").string() + " --gt " +
+                          (work / "highbay/groundtruth.tum").string() + " --align se3 --json " + json_se3.string())
+                .exit_code,
+            0);
+  EXPECT_NE(row.find("| " + fixed3(json_number(slurp(json_se3), "ape", "rmse")) + " / "), std::string::npos) << row;
 
   // LiDAR-only ATE (se3) against the ground truth in the LiDAR frame, from the written lidar.tum.
   const auto reader = open_dataset((work / "highbay").string());

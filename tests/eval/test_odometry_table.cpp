@@ -66,6 +66,20 @@ TEST(OdometryTable, ExactEstimateHasNoDrift) {
   ASSERT_FALSE(d.lost);
   EXPECT_NEAR(d.fde_percent, 0.0, 1e-12);
   EXPECT_NEAR(d.ate_rmse_m, 0.0, 1e-9);
+  EXPECT_NEAR(d.ate_se3_rmse_m, 0.0, 1e-9);
+}
+
+// A world tilted by 0.01 rad (a wrong gravity estimate): posyaw keeps the tilt, SE(3) removes it.
+TEST(OdometryTable, TiltShowsInPosYawAteOnly) {
+  const Trajectory gt = square();
+  const SE3 tilt(Quat(Eigen::AngleAxisd(0.01, Vec3::UnitX())), Vec3::Zero());
+  Trajectory est = gt;
+  for (TimedPose& p : est) p.T_W_B = tilt * p.T_W_B;
+  const DriftResult d = evaluate_drift({est, ""}, gt, AlignMode::kPosYaw, true);
+  ASSERT_FALSE(d.lost);
+  EXPECT_NEAR(d.fde_percent, 0.0, 1e-12);  // a rigid tilt is no drift
+  EXPECT_GT(d.ate_rmse_m, 0.02);           // 0.01 rad over +-5 m
+  EXPECT_NEAR(d.ate_se3_rmse_m, 0.0, 1e-9);
 }
 
 TEST(OdometryTable, LostRuns) {
@@ -125,6 +139,7 @@ TEST(OdometryTable, RowUsesTheRouteGapAndPassesCounts) {
   EXPECT_EQ(row.vil.align, AlignMode::kPosYaw);
   EXPECT_EQ(row.lidar_only.align, AlignMode::kSe3);
   EXPECT_LT(row.lidar_only.ate_rmse_m, 1.0);  // aligned despite the other frame
+  EXPECT_EQ(row.lidar_only.ate_se3_rmse_m, row.lidar_only.ate_rmse_m);
   EXPECT_EQ(row.vil_degenerate, 3u);
   EXPECT_EQ(row.lidar_only_degenerate, 17u);
   EXPECT_EQ(row.lidar_only_sweeps, 41u);
