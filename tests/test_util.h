@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the tests: the shared real-data folder and running the CLI.
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -8,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace vilslam::test {
 
@@ -56,6 +58,20 @@ inline CliResult run_cli(const std::string& args) {
     std::fclose(f);
   }
   return r;
+}
+
+// Paths of the scalar leaves of a YAML map ("vio.smoother.window_size"), in file order.
+inline std::vector<std::string> yaml_key_paths(const YAML::Node& node, const std::string& prefix = "") {
+  std::vector<std::string> paths;
+  for (const auto& entry : node) {
+    const std::string path = prefix + entry.first.Scalar();
+    if (entry.second.IsMap()) {
+      for (const std::string& p : yaml_key_paths(entry.second, path + ".")) paths.push_back(p);
+    } else {
+      paths.push_back(path);
+    }
+  }
+  return paths;
 }
 
 }  // namespace vilslam::test

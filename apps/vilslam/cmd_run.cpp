@@ -1,4 +1,4 @@
-// `vilslam run --mode vio|vil|lidar-only DATASET --out DIR [--config FILE]`: the deterministic offline pipeline (docs/pipeline.md).
+// `vilslam run --mode vio|vil|lidar-only DATASET --out DIR [--config RUN_YAML]`: the deterministic offline pipeline (docs/pipeline.md).
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -6,6 +6,7 @@
 
 #include "io/dataset.h"
 #include "pipeline/offline_runner.h"
+#include "pipeline/run_config.h"
 #include "pipeline/run_outputs.h"
 #include "pipeline/timing_stats.h"
 #include "vilslam/command.h"
@@ -46,14 +47,14 @@ vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and writ
   app.add_option("--mode", o->mode, "Pipeline mode")->check(CLI::IsMember({"vio", "vil", "lidar-only"}))->capture_default_str();
   app.add_option("dataset", o->dataset, "Dataset folder (EuRoC or the project's format)")->required();
   app.add_option("--out", o->out_dir, "Output folder (replaced)")->required();
-  app.add_option("--config", o->config_path, "LiDAR mapper YAML (LidarMapperConfig::from_yaml; default: built-in)");
+  app.add_option("--config", o->config_path,
+                 "Run YAML with optional sections frontend, vio, lidar_mapper (config/run_default.yaml); default: built-in");
   return [o]() {
-    const auto reader = open_dataset(o->dataset);
-    OfflineRunConfig config;
+    OfflineRunConfig config = o->config_path.empty() ? OfflineRunConfig{} : load_run_config(o->config_path);
     config.mode = parse_run_mode(o->mode);
-    if (!o->config_path.empty()) config.lidar = lidar::LidarMapperConfig::from_yaml(o->config_path);
+    const auto reader = open_dataset(o->dataset);
     const OfflineRunResult result = run_offline(*reader, config);
-    write_run_outputs(o->out_dir, config.mode, result);
+    write_run_outputs(o->out_dir, config, result);
     print_summary(result);
     std::printf("wrote %s\n", o->out_dir.c_str());
     return 0;

@@ -1,52 +1,39 @@
 #include "frontend/frontend_config.h"
 
-#include <yaml-cpp/yaml.h>
-
-#include <functional>
-#include <map>
-
 #include "common/error.h"
 
 namespace vilslam {
-namespace {
 
-template <typename T>
-std::function<void(const YAML::Node&)> setter(T* field) {
-  return [field](const YAML::Node& node) { *field = node.as<T>(); };
-}
-
-std::map<std::string, std::function<void(const YAML::Node&)>> setters(FrontendConfig* c) {
+YamlFields frontend_yaml_fields(FrontendConfig& c) {
   return {
-      {"min_tracked_matches", setter(&c->min_tracked_matches)},
-      {"max_corners", setter(&c->max_corners)},
-      {"corner_quality", setter(&c->corner_quality)},
-      {"corner_min_distance_px", setter(&c->corner_min_distance_px)},
-      {"corner_block_size", setter(&c->corner_block_size)},
-      {"corner_subpix_half_window_px", setter(&c->corner_subpix_half_window_px)},
-      {"elimination_distance_px", setter(&c->elimination_distance_px)},
-      {"klt_window_px", setter(&c->klt_window_px)},
-      {"klt_pyramid_levels", setter(&c->klt_pyramid_levels)},
-      {"klt_max_iterations", setter(&c->klt_max_iterations)},
-      {"klt_epsilon", setter(&c->klt_epsilon)},
-      {"klt_max_forward_backward_px", setter(&c->klt_max_forward_backward_px)},
-      {"orb_patch_size", setter(&c->orb_patch_size)},
-      {"max_descriptor_distance", setter(&c->max_descriptor_distance)},
-      {"ratio_test", setter(&c->ratio_test)},
-      {"cross_check", setter(&c->cross_check)},
-      {"max_epipolar_distance_px", setter(&c->max_epipolar_distance_px)},
-      {"min_depth_m", setter(&c->min_depth_m)},
-      {"max_depth_m", setter(&c->max_depth_m)},
-      {"max_stereo_refinement_px", setter(&c->max_stereo_refinement_px)},
-      {"max_stereo_reprojection_px", setter(&c->max_stereo_reprojection_px)},
-      {"max_temporal_reprojection_px", setter(&c->max_temporal_reprojection_px)},
-      {"pnp_min_points", setter(&c->pnp_min_points)},
-      {"pnp_ransac_iterations", setter(&c->pnp_ransac_iterations)},
-      {"pnp_ransac_threshold_px", setter(&c->pnp_ransac_threshold_px)},
-      {"ransac_seed", setter(&c->ransac_seed)},
+      yaml_value("min_tracked_matches", c.min_tracked_matches),
+      yaml_value("max_corners", c.max_corners),
+      yaml_value("corner_quality", c.corner_quality),
+      yaml_value("corner_min_distance_px", c.corner_min_distance_px),
+      yaml_value("corner_block_size", c.corner_block_size),
+      yaml_value("corner_subpix_half_window_px", c.corner_subpix_half_window_px),
+      yaml_value("elimination_distance_px", c.elimination_distance_px),
+      yaml_value("klt_window_px", c.klt_window_px),
+      yaml_value("klt_pyramid_levels", c.klt_pyramid_levels),
+      yaml_value("klt_max_iterations", c.klt_max_iterations),
+      yaml_value("klt_epsilon", c.klt_epsilon),
+      yaml_value("klt_max_forward_backward_px", c.klt_max_forward_backward_px),
+      yaml_value("orb_patch_size", c.orb_patch_size),
+      yaml_value("max_descriptor_distance", c.max_descriptor_distance),
+      yaml_value("ratio_test", c.ratio_test),
+      yaml_value("cross_check", c.cross_check),
+      yaml_value("max_epipolar_distance_px", c.max_epipolar_distance_px),
+      yaml_value("min_depth_m", c.min_depth_m),
+      yaml_value("max_depth_m", c.max_depth_m),
+      yaml_value("max_stereo_refinement_px", c.max_stereo_refinement_px),
+      yaml_value("max_stereo_reprojection_px", c.max_stereo_reprojection_px),
+      yaml_value("max_temporal_reprojection_px", c.max_temporal_reprojection_px),
+      yaml_value("pnp_min_points", c.pnp_min_points),
+      yaml_value("pnp_ransac_iterations", c.pnp_ransac_iterations),
+      yaml_value("pnp_ransac_threshold_px", c.pnp_ransac_threshold_px),
+      yaml_value("ransac_seed", c.ransac_seed),
   };
 }
-
-}  // namespace
 
 void validate_frontend_config(const FrontendConfig& c, const std::string& source) {
   const auto require = [&source](bool ok, const std::string& what) {
@@ -74,33 +61,6 @@ void validate_frontend_config(const FrontendConfig& c, const std::string& source
   require(c.pnp_min_points >= 4, "pnp_min_points must be >= 4");
   require(c.pnp_ransac_iterations > 0 && c.pnp_ransac_threshold_px > 0,
           "pnp_ransac_iterations and pnp_ransac_threshold_px must be > 0");
-}
-
-FrontendConfig load_frontend_config(const std::string& path) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw InputError(path, "cannot open frontend config");
-  } catch (const YAML::Exception& e) {
-    throw InputError(path, std::string("malformed YAML: ") + e.what(), e.mark.line + 1);
-  }
-  FrontendConfig config;
-  if (root.IsNull()) return config;
-  if (!root.IsMap()) throw InputError(path, "frontend config must be a YAML map");
-  const auto fields = setters(&config);
-  for (const auto& entry : root) {
-    const std::string key = entry.first.as<std::string>();
-    const auto it = fields.find(key);
-    if (it == fields.end()) throw InputError(path, "unknown frontend config key '" + key + "'", entry.first.Mark().line + 1);
-    try {
-      it->second(entry.second);
-    } catch (const YAML::Exception&) {
-      throw InputError(path, "bad value for '" + key + "'", entry.second.Mark().line + 1);
-    }
-  }
-  validate_frontend_config(config, path);
-  return config;
 }
 
 }  // namespace vilslam

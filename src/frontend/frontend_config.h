@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <string>
 
+#include "common/yaml_config.h"
+
 namespace vilslam {
 
 struct FrontendConfig {
@@ -45,9 +47,9 @@ struct FrontendConfig {
   std::uint64_t ransac_seed = 1;
 };
 
-// Reads the keys present in a YAML map over the defaults. Throws InputError(path, ...) for a missing
-// file, a malformed value, an unknown key or a value out of its range.
-FrontendConfig load_frontend_config(const std::string& path);
+// The YAML keys of the config (the field names), bound to c's fields: the `frontend:` section of a run
+// config (pipeline/run_config.h). Validate after reading.
+YamlFields frontend_yaml_fields(FrontendConfig& c);
 
 // Throws InputError(source, ...) when a value is out of range.
 void validate_frontend_config(const FrontendConfig& config, const std::string& source);

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
 #include "common/error.h"
@@ -41,24 +40,6 @@ std::vector<double> flatten_matrix(const YAML::Node& m, const std::string& key, 
 }
 
 }  // namespace
-
-YAML::Node load_yaml_file(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw InputError(path, "cannot open file");
-  std::stringstream buffer;
-  buffer << f.rdbuf();
-  std::string text = buffer.str();
-  // OpenCV writes "%YAML:1.0", which is not a valid YAML directive: drop that first line.
-  if (text.rfind("%YAML:", 0) == 0) {
-    const auto eol = text.find('\n');
-    text = eol == std::string::npos ? std::string() : text.substr(eol + 1);
-  }
-  try {
-    return YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(path, "malformed YAML: " + e.msg, e.mark.line >= 0 ? e.mark.line + 1 : 0);
-  }
-}
 
 double yaml_double(const YAML::Node& node, const std::string& key, const std::string& file) {
   double v = 0;

@@ -1,12 +1,13 @@
 #pragma once
-// yaml-cpp helpers shared by the calibration readers: loading OpenCV-style files ("%YAML:1.0"),
-// typed field access and 4x4 rigid transforms, every failure an InputError naming the file.
+// yaml-cpp helpers shared by the calibration readers (loading files: common/yaml_config.h load_yaml_file):
+// typed required fields and 4x4 rigid transforms, every failure an InputError naming the file.
 #include <yaml-cpp/yaml.h>
 
 #include <string>
 #include <vector>
 
 #include "common/lie.h"
+#include "common/yaml_config.h"  // load_yaml_file
 
 namespace vilslam {
 
@@ -14,9 +15,6 @@ namespace vilslam {
 // better (EuRoC T_BS 6e-13, KITTI Tr 9e-8, KITTI 00 poses 2e-7: docs/formats.md); 1e-5 still rejects
 // any edited entry.
 constexpr double kRotationTolerance = 1e-5;
-
-// Loads a YAML file; an OpenCV "%YAML:1.0" first line is accepted. Missing or malformed: InputError.
-YAML::Node load_yaml_file(const std::string& path);
 
 // node[key] must exist and convert; otherwise InputError(file, "<key>: ...").
 double yaml_double(const YAML::Node& node, const std::string& key, const std::string& file);

@@ -1,100 +1,79 @@
 #include "lidar/lidar_config.h"
 
-#include <yaml-cpp/yaml.h>
-
-#include <filesystem>
-#include <functional>
-#include <map>
-
 #include "common/error.h"
 
 namespace vilslam::lidar {
 
 namespace {
 
-using Setter = std::function<void(const YAML::Node&)>;
-
-template <typename T>
-Setter set(T& field) {
-  return [&field](const YAML::Node& node) { field = node.as<T>(); };
-}
-
-Setter set_loss(RobustLoss& loss) {
-  return [&loss](const YAML::Node& node) {
+YamlField loss_field(RobustLoss& loss) {
+  YamlField f;
+  f.key = "loss";
+  f.read = [&loss](const YAML::Node& node, const std::string& file, const std::string& key_path) {
     const std::string name = node.as<std::string>();
-    if (name != "huber" && name != "cauchy") throw YAML::Exception(node.Mark(), "loss must be huber or cauchy");
+    if (name != "huber" && name != "cauchy") {
+      throw InputError(file, "'" + key_path + "' must be huber or cauchy", node.Mark().line + 1);
+    }
     loss = name == "huber" ? RobustLoss::kHuber : RobustLoss::kCauchy;
   };
+  f.write = [&loss]() { return YAML::Node(loss == RobustLoss::kHuber ? "huber" : "cauchy"); };
+  return f;
 }
 
-std::map<std::string, Setter> voxel_keys(VoxelMapConfig& c) {
-  return {{"voxel_size_m", set(c.voxel_size_m)},
-          {"min_point_spacing_m", set(c.min_point_spacing_m)},
-          {"max_points_per_voxel", set(c.max_points_per_voxel)},
-          {"max_distance_m", set(c.max_distance_m)}};
-}
-
-// Applies a YAML mapping to fields by name; unknown keys are errors so that typos do not pass silently.
-void apply(const std::string& path, const YAML::Node& node, const std::string& section,
-           const std::map<std::string, Setter>& keys) {
-  if (!node) return;
-  if (!node.IsMap()) throw InputError(path, "section '" + section + "' must be a mapping", node.Mark().line + 1);
-  for (const auto& entry : node) {
-    const std::string key = entry.first.as<std::string>();
-    const auto it = keys.find(key);
-    if (it == keys.end()) throw InputError(path, "unknown key '" + section + "." + key + "'", entry.first.Mark().line + 1);
-    it->second(entry.second);
-  }
+YamlFields voxel_fields(VoxelMapConfig& c) {
+  return {yaml_value("voxel_size_m", c.voxel_size_m), yaml_value("min_point_spacing_m", c.min_point_spacing_m),
+          yaml_value("max_points_per_voxel", c.max_points_per_voxel), yaml_value("max_distance_m", c.max_distance_m)};
 }
 
 }  // namespace
 
-LidarConfig load_lidar_config(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw InputError(path, "file does not exist");
-  LidarConfig c;
-  try {
-    const YAML::Node root = YAML::LoadFile(path);
-    RingConfig& r = c.rings;
-    apply(path, root["rings"], "rings",
-          {{"num_rings", set(r.num_rings)}, {"min_elevation_deg", set(r.min_elevation_deg)},
-           {"max_elevation_deg", set(r.max_elevation_deg)}, {"min_range_m", set(r.min_range_m)},
-           {"max_range_m", set(r.max_range_m)}});
-    FeatureConfig& f = c.features;
-    apply(path, root["features"], "features",
-          {{"half_window", set(f.half_window)}, {"sectors_per_ring", set(f.sectors_per_ring)},
-           {"max_edges_per_sector", set(f.max_edges_per_sector)},
-           {"max_surfaces_per_sector", set(f.max_surfaces_per_sector)},
-           {"edge_min_smoothness", set(f.edge_min_smoothness)},
-           {"surface_max_smoothness", set(f.surface_max_smoothness)},
-           {"occlusion_jump_ratio", set(f.occlusion_jump_ratio)},
-           {"max_neighbor_gap_ratio", set(f.max_neighbor_gap_ratio)}});
-    if (root["map"]) {
-      apply(path, root["map"]["edges"], "map.edges", voxel_keys(c.map.edges));
-      apply(path, root["map"]["surfaces"], "map.surfaces", voxel_keys(c.map.surfaces));
-    }
-    RegistrationConfig& g = c.registration;
-    AssociationConfig& a = g.association;
-    apply(path, root["registration"], "registration",
-          {{"max_outer_iterations", set(g.max_outer_iterations)},
-           {"max_inner_iterations", set(g.max_inner_iterations)},
-           {"converged_translation_m", set(g.converged_translation_m)},
-           {"converged_rotation_rad", set(g.converged_rotation_rad)},
-           {"loss", set_loss(g.loss)}, {"loss_scale_m", set(g.loss_scale_m)},
-           {"source_edge_leaf_m", set(g.source_edge_leaf_m)},
-           {"source_surface_leaf_m", set(g.source_surface_leaf_m)},
-           {"degenerate_min_eigenvalue_per_match", set(g.degenerate_min_eigenvalue_per_match)},
-           {"remap_degenerate_directions", set(g.remap_degenerate_directions)},
-           {"num_neighbors", set(a.num_neighbors)},
-           {"max_neighbor_distance_m", set(a.max_neighbor_distance_m)},
-           {"min_line_eigen_ratio", set(a.min_line_eigen_ratio)},
-           {"max_plane_point_distance_m", set(a.max_plane_point_distance_m)}});
-  } catch (const YAML::Exception& e) {
-    throw InputError(path, e.msg, e.mark.line + 1);
-  }
+YamlFields lidar_yaml_fields(LidarConfig& c) {
+  RingConfig& r = c.rings;
+  FeatureConfig& f = c.features;
+  RegistrationConfig& g = c.registration;
+  AssociationConfig& a = g.association;
+  return {
+      yaml_section("rings", {yaml_value("num_rings", r.num_rings), yaml_value("min_elevation_deg", r.min_elevation_deg),
+                             yaml_value("max_elevation_deg", r.max_elevation_deg),
+                             yaml_value("min_range_m", r.min_range_m), yaml_value("max_range_m", r.max_range_m)}),
+      yaml_section("features", {yaml_value("half_window", f.half_window),
+                                yaml_value("sectors_per_ring", f.sectors_per_ring),
+                                yaml_value("max_edges_per_sector", f.max_edges_per_sector),
+                                yaml_value("max_surfaces_per_sector", f.max_surfaces_per_sector),
+                                yaml_value("edge_min_smoothness", f.edge_min_smoothness),
+                                yaml_value("surface_max_smoothness", f.surface_max_smoothness),
+                                yaml_value("occlusion_jump_ratio", f.occlusion_jump_ratio),
+                                yaml_value("max_neighbor_gap_ratio", f.max_neighbor_gap_ratio)}),
+      yaml_section("map", {yaml_section("edges", voxel_fields(c.map.edges)),
+                           yaml_section("surfaces", voxel_fields(c.map.surfaces))}),
+      yaml_section("registration",
+                   {yaml_value("max_outer_iterations", g.max_outer_iterations),
+                    yaml_value("max_inner_iterations", g.max_inner_iterations),
+                    yaml_value("converged_translation_m", g.converged_translation_m),
+                    yaml_value("converged_rotation_rad", g.converged_rotation_rad), loss_field(g.loss),
+                    yaml_value("loss_scale_m", g.loss_scale_m), yaml_value("source_edge_leaf_m", g.source_edge_leaf_m),
+                    yaml_value("source_surface_leaf_m", g.source_surface_leaf_m),
+                    yaml_value("degenerate_min_eigenvalue_per_match", g.degenerate_min_eigenvalue_per_match),
+                    yaml_value("remap_degenerate_directions", g.remap_degenerate_directions),
+                    yaml_value("num_neighbors", a.num_neighbors),
+                    yaml_value("max_neighbor_distance_m", a.max_neighbor_distance_m),
+                    yaml_value("min_line_eigen_ratio", a.min_line_eigen_ratio),
+                    yaml_value("max_plane_point_distance_m", a.max_plane_point_distance_m)}),
+  };
+}
+
+void validate_lidar_config(const LidarConfig& c, const std::string& source) {
   if (c.rings.num_rings < 1 || c.features.half_window < 1 || c.features.sectors_per_ring < 1 ||
       c.map.edges.voxel_size_m <= 0.0 || c.map.surfaces.voxel_size_m <= 0.0) {
-    throw InputError(path, "num_rings, half_window, sectors_per_ring and voxel sizes must be positive");
+    throw InputError(source, "rings.num_rings, features.half_window, features.sectors_per_ring and map voxel_size_m "
+                             "must be positive");
   }
+}
+
+LidarConfig load_lidar_config(const std::string& path) {
+  LidarConfig c;
+  read_yaml_fields(load_yaml_file(path), path, "", lidar_yaml_fields(c));
+  validate_lidar_config(c, path);
   return c;
 }
 

@@ -3,6 +3,8 @@
 // sections and keys mirror the struct fields (rings, features, map, registration), all optional.
 #include <string>
 
+#include "common/yaml_config.h"
+
 #include "lidar/feature_map.h"
 #include "lidar/features.h"
 #include "lidar/registration.h"
@@ -17,7 +19,14 @@ struct LidarConfig {
   RegistrationConfig registration;
 };
 
-// Throws InputError naming the file on a missing file, bad YAML, unknown key or wrong value type.
+// The sections rings, features, map (edges, surfaces) and registration, bound to c's fields.
+YamlFields lidar_yaml_fields(LidarConfig& c);
+
+// Throws InputError(source, ...) when a count or voxel size is not positive.
+void validate_lidar_config(const LidarConfig& c, const std::string& source);
+
+// A file of lidar_yaml_fields (e.g. config/lidar_hdl32e.yaml for `vilslam register`). Throws InputError
+// naming the file on a missing file, bad YAML, unknown key, wrong value type or invalid value.
 LidarConfig load_lidar_config(const std::string& path);
 
 }  // namespace vilslam::lidar

@@ -1,7 +1,5 @@
 #include "lidar/lidar_mapper.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <chrono>
 
 #include "common/error.h"
@@ -28,38 +26,11 @@ LidarMapperConfig::LidarMapperConfig() {
   lidar.registration.degenerate_min_eigenvalue_per_match = 0.03;
 }
 
-LidarMapperConfig LidarMapperConfig::from_yaml(const std::string& path) {
-  LidarMapperConfig c;
-  c.lidar = load_lidar_config(path);
-  try {
-    const YAML::Node root = YAML::LoadFile(path);
-    // Keys the file leaves out keep the mapper's defaults, not those of LidarConfig.
-    const YAML::Node registration = root["registration"];
-    const LidarMapperConfig defaults;
-    if (!registration || !registration["remap_degenerate_directions"]) {
-      c.lidar.registration.remap_degenerate_directions = defaults.lidar.registration.remap_degenerate_directions;
-    }
-    if (!registration || !registration["degenerate_min_eigenvalue_per_match"]) {
-      c.lidar.registration.degenerate_min_eigenvalue_per_match =
-          defaults.lidar.registration.degenerate_min_eigenvalue_per_match;
-    }
-    const YAML::Node mapper = root["mapper"];
-    if (!mapper) return c;
-    if (!mapper.IsMap()) throw InputError(path, "section 'mapper' must be a mapping", mapper.Mark().line + 1);
-    for (const auto& entry : mapper) {
-      const std::string key = entry.first.as<std::string>();
-      if (key == "dewarp") {
-        c.dewarp = entry.second.as<bool>();
-      } else if (key == "lidar_only_redewarp") {
-        c.lidar_only_redewarp = entry.second.as<bool>();
-      } else {
-        throw InputError(path, "unknown key 'mapper." + key + "'", entry.first.Mark().line + 1);
-      }
-    }
-  } catch (const YAML::Exception& e) {
-    throw InputError(path, e.msg, e.mark.line + 1);
-  }
-  return c;
+YamlFields lidar_mapper_yaml_fields(LidarMapperConfig& c) {
+  YamlFields fields = lidar_yaml_fields(c.lidar);
+  fields.push_back(yaml_section(
+      "mapper", {yaml_value("dewarp", c.dewarp), yaml_value("lidar_only_redewarp", c.lidar_only_redewarp)}));
+  return fields;
 }
 
 LidarMapper::LidarMapper(const LidarMapperConfig& config, const SE3& T_I_L)

@@ -22,10 +22,11 @@ struct LidarMapperConfig {
   bool lidar_only_redewarp = true;
 
   LidarMapperConfig();
-
-  // The sections of load_lidar_config plus an optional `mapper:` section (dewarp, lidar_only_redewarp). Throws InputError.
-  static LidarMapperConfig from_yaml(const std::string& path);
 };
+
+// The sections of lidar_yaml_fields plus `mapper` (dewarp, lidar_only_redewarp), bound to c's fields: the
+// `lidar_mapper:` section of a run config (pipeline/run_config.h). Validate with validate_lidar_config.
+YamlFields lidar_mapper_yaml_fields(LidarMapperConfig& c);
 
 struct LidarMappingResult {
   TimeNs t_ns = 0;  // the scan end t_{k+1}, the instant of T_W_L

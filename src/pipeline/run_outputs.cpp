@@ -7,6 +7,7 @@
 
 #include "common/json_writer.h"
 #include "io/trajectory_io.h"
+#include "pipeline/run_config.h"
 #include "pipeline/timing_stats.h"
 
 namespace vilslam {
@@ -59,7 +60,8 @@ std::string degeneracy_csv(const std::vector<lidar::LidarMappingResult>& mapped)
 
 }  // namespace
 
-void write_run_outputs(const std::string& out_dir, RunMode mode, const OfflineRunResult& result) {
+void write_run_outputs(const std::string& out_dir, const OfflineRunConfig& config, const OfflineRunResult& result) {
+  const RunMode mode = config.mode;
   fs::path out = fs::path(out_dir).lexically_normal();
   if (!out.has_filename()) out = out.parent_path();  // "DIR/"
   const fs::path partial = out.string() + ".partial";
@@ -76,6 +78,7 @@ void write_run_outputs(const std::string& out_dir, RunMode mode, const OfflineRu
     write_file_atomic((partial / "degeneracy.csv").string(), degeneracy_csv(result.lidar));
   }
   write_file_atomic((partial / "timings.json").string(), timings_json(mode, result));
+  write_file_atomic((partial / "config.yaml").string(), run_config_yaml(config));
   fs::remove_all(out);
   fs::rename(partial, out);
 }

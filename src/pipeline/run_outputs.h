@@ -1,6 +1,7 @@
 #pragma once
 // Writes an offline run's results into an output folder: vio_camera.tum and vio_imu.tum (vio, vil),
-// lidar.tum and degeneracy.csv (vil, lidar-only), timings.json.
+// lidar.tum and degeneracy.csv (vil, lidar-only), timings.json, and config.yaml (the effective run config,
+// pipeline/run_config.h: `vilslam run --config DIR/config.yaml` repeats the run).
 // The folder is assembled as DIR.partial and renamed into place, so DIR is never half-written.
 #include <string>
 
@@ -9,6 +10,6 @@
 namespace vilslam {
 
 // Replaces out_dir when it exists. Throws std::runtime_error when a file cannot be written.
-void write_run_outputs(const std::string& out_dir, RunMode mode, const OfflineRunResult& result);
+void write_run_outputs(const std::string& out_dir, const OfflineRunConfig& config, const OfflineRunResult& result);
 
 }  // namespace vilslam

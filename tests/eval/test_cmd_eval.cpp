@@ -1,31 +1,15 @@
 // The `vilslam eval` and `vilslam eval-map` commands, run as a user would.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-#include <fstream>
-#include <sstream>
-
 #include "io/cloud_io.h"
+#include "cli_output.h"
 #include "test_util.h"
 
 namespace vilslam {
 namespace {
 
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// The number after "key": inside the JSON object introduced by "object": (first match after it).
-double json_number(const std::string& doc, const std::string& object, const std::string& key) {
-  const auto at = doc.find("\"" + object + "\":");
-  EXPECT_NE(at, std::string::npos) << object;
-  const auto k = doc.find("\"" + key + "\":", at);
-  EXPECT_NE(k, std::string::npos) << object << "." << key;
-  return std::strtod(doc.c_str() + k + key.size() + 3, nullptr);
-}
+using test::json_number;
+using test::slurp;
 
 TEST(CmdEval, ReproducesEvoOnKitti00) {
   VILSLAM_REQUIRE_SHARED_DATA(dir, "trajectories");

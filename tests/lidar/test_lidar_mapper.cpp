@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <vector>
 
@@ -188,20 +187,19 @@ TEST(LidarMapper, ForgetsMapPointsFarFromTheSensor) {
   EXPECT_LE(farthest_m, bound_m);
 }
 
-TEST(LidarMapperConfig, LoadsYamlAndRejectsUnknownKeys) {
-  const LidarMapperConfig c = LidarMapperConfig::from_yaml(std::string(VILSLAM_SOURCE_DIR) + "/config/lidar_mapper_vlp16.yaml");
-  EXPECT_TRUE(c.dewarp);
-  EXPECT_TRUE(c.lidar.registration.remap_degenerate_directions);
-  EXPECT_EQ(c.lidar.rings.num_rings, 16);
-  const std::string path = (test::temp_dir() / "mapper.yaml").string();
-  std::ofstream(path) << "features:\n  half_window: 4\nmapper:\n  dewarp: false\n";
-  const LidarMapperConfig d = LidarMapperConfig::from_yaml(path);
+TEST(LidarMapperConfig, ReadsYamlOverTheMapperDefaultsAndRejectsUnknownKeys) {
+  LidarMapperConfig d;
+  read_yaml_fields(YAML::Load("features:\n  half_window: 4\nmapper:\n  dewarp: false\n  lidar_only_redewarp: false\n"),
+                   "mapper.yaml", "", lidar_mapper_yaml_fields(d));
   EXPECT_FALSE(d.dewarp);
+  EXPECT_FALSE(d.lidar_only_redewarp);
   EXPECT_EQ(d.lidar.features.half_window, 4);
   EXPECT_TRUE(d.lidar.registration.remap_degenerate_directions);  // the mapper's defaults
   EXPECT_EQ(d.lidar.registration.degenerate_min_eigenvalue_per_match, 0.03);
-  std::ofstream(path) << "mapper:\n  dewarp: false\n  dewrap: true\n";
-  EXPECT_THROW(LidarMapperConfig::from_yaml(path), InputError);
+  LidarMapperConfig e;
+  EXPECT_THROW(read_yaml_fields(YAML::Load("mapper:\n  dewarp: false\n  dewrap: true\n"), "mapper.yaml", "",
+                                lidar_mapper_yaml_fields(e)),
+               InputError);
 }
 
 }  // namespace

@@ -1,0 +1,191 @@
+// `vilslam odometry-table --work DIR [--presets a,b] [--seed S] [--preview] [--out FILE] [--note TEXT]`:
+// simulates (or reuses) each preset, runs `vil` and `lidar-only`, and writes the paper's odometry table
+// (docs/odometry.md, src/eval/odometry_table.h).
+#include <spdlog/spdlog.h>
+#include <sys/utsname.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "common/error.h"
+#include "common/json_writer.h"
+#include "eval/odometry_markdown.h"
+#include "eval/odometry_table.h"
+#include "io/dataset.h"
+#include "pipeline/offline_runner.h"
+#include "pipeline/run_outputs.h"
+#include "sim/simulator.h"
+#include "vilslam/command.h"
+
+namespace {
+
+using namespace vilslam;
+namespace fs = std::filesystem;
+
+struct Options {
+  std::string work;
+  std::vector<std::string> presets = {"highbay", "hallway", "tunnel"};
+  std::uint64_t seed = 1;
+  bool preview = false;
+  std::string out = "docs/odometry.md";
+  std::string note;
+};
+
+// The simulator renames its folder into place, then moves kitti/ and groundtruth.tum in last.
+bool complete_simulation(const fs::path& dir) {
+  for (const char* part : {"rig.yaml", "mav0", "model.ply", "kitti/poses.txt", "groundtruth.tum"})
+    if (!fs::exists(dir / part)) return false;
+  return true;
+}
+
+// Reuses DIR/<preset> when it holds a complete simulation, else simulates it there; returns the table's note.
+std::string prepare_dataset(const fs::path& data, const std::string& preset, const Options& o) {
+  if (fs::exists(data)) {
+    if (!complete_simulation(data))
+      throw InputError(data.string(), "holds no complete simulation (rig.yaml, mav0, model.ply, kitti, groundtruth.tum); "
+                                      "remove it or let its simulation finish");
+    const std::string target = fs::is_symlink(data) ? " → `" + fs::canonical(data).string() + "`" : "";
+    return "reused `" + data.string() + "`" + target;
+  }
+  sim::SimulateRequest request;
+  request.scenario = sim::parse_scenario(preset);
+  request.out_dir = data.string();
+  request.seed = o.seed;
+  request.preview = o.preview;
+  spdlog::info("odometry-table: simulating {} (seed {}) into {}", preset, o.seed, data.string());
+  sim::simulate(sim::SimConfig{}, request);
+  return "simulated, seed " + std::to_string(o.seed) + (o.preview ? ", preview" : "");
+}
+
+struct ModeRun {
+  OfflineRunResult result;
+  std::string failure;  // the run threw (bad input is not a failure: it propagates)
+};
+
+// Runs one mode like `vilslam run`, writing its folder; a failed run leaves no folder.
+ModeRun run_mode(const fs::path& data, RunMode mode, const fs::path& out) {
+  spdlog::info("odometry-table: {} on {}", run_mode_name(mode), data.string());
+  ModeRun run;
+  const auto reader = open_dataset(data.string());
+  OfflineRunConfig config;
+  config.mode = mode;
+  try {
+    run.result = run_offline(*reader, config);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    run.failure = e.what();
+    fs::remove_all(out);
+    return run;
+  }
+  write_run_outputs(out.string(), config, run.result);
+  return run;
+}
+
+eval::RunTrajectory lidar_poses(const ModeRun& run, std::size_t* degenerate, std::size_t* sweeps) {
+  eval::RunTrajectory traj{{}, run.failure};
+  for (const lidar::LidarMappingResult& m : run.result.lidar) {
+    traj.poses.push_back({m.t_ns, m.T_W_L});
+    *degenerate += m.degenerate ? 1 : 0;
+  }
+  *sweeps = run.result.lidar.size();
+  return traj;
+}
+
+eval::OdometryRow measure_preset(const fs::path& work, const std::string& preset, const Options& o) {
+  const fs::path data = work / preset;
+  eval::OdometryInputs in;
+  in.preset = preset;
+  in.source = prepare_dataset(data, preset, o);
+  const auto reader = open_dataset(data.string());
+  for (const GroundTruthState& g : reader->groundtruth()) {
+    in.gt_T_W_I.push_back({g.t_ns, g.T_W_I});
+    in.gt_T_W_L.push_back({g.t_ns, g.T_W_I * reader->calibration().T_I_L});
+  }
+  if (in.gt_T_W_I.size() < 2) throw InputError(data.string(), "has no ground truth to evaluate against");
+  const ModeRun vil = run_mode(data, RunMode::kVil, work / (preset + "_vil"));
+  const ModeRun lidar_only = run_mode(data, RunMode::kLidarOnly, work / (preset + "_lidar-only"));
+  in.vio = {vil.result.camera_states, vil.failure};
+  in.vil = lidar_poses(vil, &in.vil_degenerate, &in.vil_sweeps);
+  in.lidar_only = lidar_poses(lidar_only, &in.lidar_only_degenerate, &in.lidar_only_sweeps);
+  return eval::compute_odometry_row(in);
+}
+
+// Fails early (exit 2) rather than after the runs when the table cannot be written.
+void check_writable(const fs::path& out) {
+  const fs::path dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
+  if (!fs::is_directory(dir) || ::access(dir.c_str(), W_OK) != 0)
+    throw InputError(out.string(), "cannot be written: " + dir.string() + " is not a writable folder");
+}
+
+std::string command_line(const Options& o) {
+  std::string presets;
+  for (const std::string& p : o.presets) presets += (presets.empty() ? "" : ",") + p;
+  std::string cmd = "vilslam odometry-table --work " + o.work + " --presets " + presets + " --seed " +
+                    std::to_string(o.seed) + (o.preview ? " --preview" : "") + " --out " + o.out;
+  if (!o.note.empty()) cmd += " --note '" + o.note + "'";
+  return cmd;
+}
+
+std::string date_utc() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buf[64];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", &tm);
+  return buf;
+}
+
+std::string machine(double load_at_start) {
+  utsname u{};
+  uname(&u);
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%s (%s, %u hardware threads, load average %.1f at the start)", u.nodename, u.machine,
+                std::thread::hardware_concurrency(), load_at_start);
+  return buf;
+}
+
+vilslam::cli::Command reg("odometry-table", "Paper's odometry table (VIO / VIL / LiDAR-only FDE) on simulated presets",
+                          [](CLI::App& app) {
+  auto o = std::make_shared<Options>();
+  app.add_option("--work", o->work, "Work folder: WORK/<preset> (reused or simulated), WORK/<preset>_<mode> runs")
+      ->required();
+  app.add_option("--presets", o->presets, "Comma-separated presets")->delimiter(',')->capture_default_str();
+  app.add_option("--seed", o->seed, "Seed of the presets simulated here")->capture_default_str();
+  app.add_flag("--preview", o->preview, "Simulate only the preview seconds (quick check, the route does not close)");
+  app.add_option("--out", o->out, "Markdown file to write")->capture_default_str();
+  app.add_option("--note", o->note, "Text appended to the page (e.g. how reused simulations were made)");
+  return [o]() {
+    const auto start = std::chrono::steady_clock::now();
+    double load[1] = {0};
+    getloadavg(load, 1);
+    for (const std::string& preset : o->presets) sim::parse_scenario(preset);
+    check_writable(o->out);
+    std::error_code ec;
+    fs::create_directories(o->work, ec);
+    if (ec) throw InputError(o->work, "cannot create the work folder: " + ec.message());
+    std::vector<eval::OdometryRow> rows;
+    for (const std::string& preset : o->presets) rows.push_back(measure_preset(o->work, preset, *o));
+    eval::OdometryDocument doc;
+    doc.command = command_line(*o);
+    doc.date_utc = date_utc();
+    doc.machine = machine(load[0]);
+    doc.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    doc.note = o->note;
+    std::cout << eval::odometry_table_markdown(rows);
+    write_file_atomic(o->out, eval::odometry_document_markdown(rows, doc));
+    std::cout << "wrote " << o->out << "\n";
+    return 0;
+  };
+});
+
+}  // namespace

@@ -1,0 +1,84 @@
+#pragma once
+// The paper's odometry table (VIL-SLAM Table I, FDE column) on simulated presets: per preset the final
+// drift of the VIO, of the VIL LiDAR mapping poses and of LiDAR-only mapping, their ATE against ground
+// truth, the degenerate sweeps, next to the paper's values; rendered as Markdown (docs/odometry.md).
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/types.h"
+#include "eval/alignment.h"
+
+namespace vilslam::eval {
+
+// One estimated trajectory of a run, or why the run produced none.
+struct RunTrajectory {
+  Trajectory poses;
+  std::string failure;  // non-empty: the run threw (its message)
+};
+
+// Everything one row needs. Ground truth and estimates of the LiDAR runs are in the LiDAR frame (T_W_L).
+struct OdometryInputs {
+  std::string preset;
+  std::string source;        // where the simulation came from, for the table
+  Trajectory gt_T_W_I;       // ground truth of the IMU body
+  Trajectory gt_T_W_L;       // ground truth of the LiDAR (T_W_I T_I_L)
+  RunTrajectory vio;         // camera-rate VIO states T_W_I
+  RunTrajectory vil;         // VIL LiDAR mapping poses T_W_L
+  RunTrajectory lidar_only;  // LiDAR-only mapping poses T_W_L
+  std::size_t vil_degenerate = 0, vil_sweeps = 0;
+  std::size_t lidar_only_degenerate = 0, lidar_only_sweeps = 0;
+};
+
+// When a run counts as lost (besides throwing, producing < 2 poses or a non-finite pose).
+struct LostCriteria {
+  double min_coverage = 0.5;       // the estimate spans at least this fraction of the ground truth's time span
+  double max_error_fraction = 0.1; // after ATE alignment no pose is farther from ground truth than this
+  double max_error_floor_m = 1.0;  //   fraction of the path length, or this many metres if more
+};
+
+// A route closes when its ground truth ends within this distance of its start.
+constexpr double kClosedRouteGapM = 0.01;
+
+struct DriftResult {
+  bool lost = false;
+  std::string lost_reason;
+  std::size_t poses = 0;
+  double fde_percent = 0;     // see OdometryRow::closed
+  double drift_m = 0;
+  double path_length_m = 0;   // the length the FDE is relative to
+  double ate_rmse_m = 0;      // APE translation RMSE after the alignment `align`
+  double ape_max_m = 0;       //   and its largest APE (the lost rule)
+  double ate_se3_rmse_m = 0;  // APE translation RMSE after an SE(3) alignment (NaN: positions on a line)
+  AlignMode align = AlignMode::kNone;
+};
+
+struct OdometryRow {
+  std::string preset, source;
+  double gt_length_m = 0;
+  double gt_gap_m = 0;   // ground truth: distance between its last and first position
+  bool closed = false;   // gt_gap_m <= kClosedRouteGapM: FDE = |p_last - p_first| of the estimate over its
+                         // path length (paper); otherwise the start-aligned drift against ground truth
+  DriftResult vio, vil, lidar_only;
+  std::size_t vil_degenerate = 0, vil_sweeps = 0;
+  std::size_t lidar_only_degenerate = 0, lidar_only_sweeps = 0;
+};
+
+// FDE, ATE and the lost verdict of one estimate against its ground truth (same frame).
+DriftResult evaluate_drift(const RunTrajectory& run, const Trajectory& gt, AlignMode align, bool closed,
+                           const LostCriteria& criteria = {});
+
+// Throws std::invalid_argument when the ground truth has fewer than 2 poses.
+OdometryRow compute_odometry_row(const OdometryInputs& in, const LostCriteria& criteria = {});
+
+// The paper's Table I (odometry FDE in %, path length in m) for a preset; nullopt for presets it lacks.
+struct PaperOdometry {
+  std::string test;                   // the paper's name of the test
+  double length_m = 0;
+  double vil_slam_fde_percent = 0;
+  std::optional<double> loam_fde_percent;  // nullopt: LOAM did not finish
+};
+std::optional<PaperOdometry> paper_odometry(const std::string& preset);
+
+}  // namespace vilslam::eval

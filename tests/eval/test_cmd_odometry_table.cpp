@@ -1,0 +1,112 @@
+// `vilslam odometry-table` end to end on a preview highbay: simulated when missing, reused when present,
+// the page holds the numbers `vilslam eval` gives; bad input exits 2.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "eval/trajectory_eval.h"
+#include "io/dataset.h"
+#include "io/trajectory_io.h"
+#include "cli_output.h"
+#include "test_util.h"
+
+namespace vilslam {
+namespace {
+
+namespace fs = std::filesystem;
+
+using test::json_number;
+using test::slurp;
+
+std::string fixed3(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f", v);
+  return buf;
+}
+
+// The table's line of a preset.
+std::string table_row(const std::string& page, const std::string& preset) {
+  const auto at = page.find("| " + preset + " |");
+  return at == std::string::npos ? std::string() : page.substr(at, page.find('\n', at) - at);
+}
+
+// The row from its third cell on (the cells after preset and simulation).
+std::string after_source(const std::string& row) {
+  std::size_t at = 0;
+  for (int i = 0; i < 3; ++i) at = row.find('|', at) + 1;
+  return row.substr(at);
+}
+
+TEST(CmdOdometryTable, PreviewHighbaySimulatesThenReuses) {
+  const fs::path dir = test::temp_dir();
+  const fs::path work = dir / "work", page = dir / "odometry.md";
+  const test::CliResult r = test::run_cli("odometry-table --work " + work.string() +
+                                          " --presets highbay --seed 3 --preview --out " + page.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* sub : {"highbay/groundtruth.tum", "highbay_vil/vio_camera.tum", "highbay_vil/lidar.tum",
+                          "highbay_lidar-only/lidar.tum", "highbay_lidar-only/degeneracy.csv"})
+    EXPECT_TRUE(fs::exists(work / sub)) << sub;
+  const std::string text = slurp(page);
+  const std::string row = table_row(text, "highbay");
+  ASSERT_FALSE(row.empty()) << text;
+  EXPECT_NE(row.find("| simulated, seed 3, preview |"), std::string::npos) << row;
+  EXPECT_NE(r.output.find(row), std::string::npos) << "the table is printed too";
+  EXPECT_NE(text.find("odometry-table --work " + work.string() + " --presets highbay --seed 3 --preview --out"),
+            std::string::npos);
+
+  // The preview does not return to its start: the VIO FDE is the start-aligned drift `vilslam eval` reports.
+  const fs::path json = dir / "vio.json";
+  const test::CliResult ev = test::run_cli("eval --est " + (work / "highbay_vil/vio_camera.tum").string() + " --gt " +
+                                           (work / "highbay/groundtruth.tum").string() + " --align posyaw --json " +
+                                           json.string());
+  ASSERT_EQ(ev.exit_code, 0) << ev.output;
+  const std::string doc = slurp(json);
+  EXPECT_NE(row.find("| " + fixed3(json_number(doc, "fde_start_aligned_percent", "fde_start_aligned_percent")) + " %†"),
+            std::string::npos)
+      << row;
+  EXPECT_NE(row.find("| " + fixed3(json_number(doc, "ape", "rmse")) + " / "), std::string::npos) << row;
+  const fs::path json_se3 = dir / "vio_se3.json";
+  ASSERT_EQ(test::run_cli("eval --est " + (work / "highbay_vil/vio_camera.tum").string() + " --gt " +
+                          (work / "highbay/groundtruth.tum").string() + " --align se3 --json " + json_se3.string())
+                .exit_code,
+            0);
+  EXPECT_NE(row.find("| " + fixed3(json_number(slurp(json_se3), "ape", "rmse")) + " / "), std::string::npos) << row;
+
+  // LiDAR-only ATE (se3) against the ground truth in the LiDAR frame, from the written lidar.tum.
+  const auto reader = open_dataset((work / "highbay").string());
+  Trajectory gt_L;
+  for (const GroundTruthState& g : reader->groundtruth()) gt_L.push_back({g.t_ns, g.T_W_I * reader->calibration().T_I_L});
+  eval::TrajectoryEvalConfig se3;
+  const eval::TrajectoryEvalReport lidar_only = eval::evaluate_trajectory(
+      read_trajectory((work / "highbay_lidar-only/lidar.tum").string(), TrajectoryFormat::kTum), gt_L, se3);
+  EXPECT_NE(row.find(" / " + fixed3(lidar_only.ape.trans.rmse) + " |"), std::string::npos) << row;
+  EXPECT_LT(lidar_only.ape.trans.rmse, 0.10);
+
+  // A second work folder whose highbay is a link to the first: reused, same numbers.
+  const fs::path work2 = dir / "work2", page2 = dir / "odometry2.md";
+  fs::create_directories(work2);
+  fs::create_directory_symlink(work / "highbay", work2 / "highbay");
+  const test::CliResult again = test::run_cli("odometry-table --work " + work2.string() +
+                                              " --presets highbay --seed 3 --preview --out " + page2.string());
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_EQ(again.output.find("simulate highbay"), std::string::npos) << again.output;
+  const std::string row2 = table_row(slurp(page2), "highbay");
+  EXPECT_NE(row2.find("| reused `" + (work2 / "highbay").string() + "` → `"), std::string::npos) << row2;
+  EXPECT_EQ(after_source(row2), after_source(row));
+}
+
+TEST(CmdOdometryTable, BadInputExitsTwo) {
+  const fs::path dir = test::temp_dir();
+  const std::string work = (dir / "work").string(), page = (dir / "t.md").string();
+  EXPECT_EQ(test::run_cli("odometry-table --work " + work + " --presets highbay,mars --out " + page).exit_code, 2);
+  EXPECT_EQ(test::run_cli("odometry-table --work " + work + " --presets highbay --out " + (dir / "no/t.md").string())
+                .exit_code,
+            2);
+  fs::create_directories(dir / "work" / "highbay");  // not a complete simulation
+  EXPECT_EQ(test::run_cli("odometry-table --work " + work + " --presets highbay --out " + page).exit_code, 2);
+  EXPECT_FALSE(fs::exists(page));
+  EXPECT_FALSE(fs::exists(dir / "work" / "highbay_vil"));
+}
+
+}  // namespace
+}  // namespace vilslam
