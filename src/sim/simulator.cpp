@@ -11,6 +11,7 @@
 #include "io/dataset_writer.h"
 #include "io/euroc_tables.h"
 #include "io/trajectory_io.h"
+#include "sim/imu_alignment.h"
 #include "sim/kitti_writer.h"
 #include "sim/lidar_sim.h"
 #include "sim/scan_degeneracy.h"
@@ -67,8 +68,25 @@ struct ImuStream {
   TimeNs t0_ns = 0, t1_ns = 0;  // the sequence's time span
 };
 
-// The IMU and the ground truth at its timestamps: simulated, or a real stream restricted to the motion.
-ImuStream make_imu(const SimConfig& config, const SimulateRequest& request, const BodyMotion& motion) {
+// Re-expresses a recorded motion as the pose of the real IMU (sim/imu_alignment.h) and logs the calibration.
+void align_to_real_imu(Scene& scene, const std::vector<ImuSample>& samples) {
+  const ImuAlignment a = align_imu_to_motion(*scene.motion, samples);
+  const double body_deg = so3::log(a.R_B_I).norm() * 180.0 / kPi;
+  const double tilt_deg = std::acos(std::clamp(-a.gravity_V_m_s2.normalized().z(), -1.0, 1.0)) * 180.0 / kPi;
+  spdlog::info("real IMU vs ground truth: IMU axes {:.2f} deg from the body's{}, gravity {:.2f} deg from -z "
+               "(|g| {:.3f} m/s^2), biases gyro [{:.4f} {:.4f} {:.4f}] rad/s accel [{:.3f} {:.3f} {:.3f}] m/s^2; "
+               "RMS residual gyro {:.4f} -> {:.4f} rad/s, accel {:.3f} -> {:.3f} m/s^2",
+               body_deg, a.rotation_estimated ? "" : " (not observable, kept)", tilt_deg, a.gravity_V_m_s2.norm(),
+               a.gyro_bias_rad_s.x(), a.gyro_bias_rad_s.y(), a.gyro_bias_rad_s.z(), a.accel_bias_m_s2.x(),
+               a.accel_bias_m_s2.y(), a.accel_bias_m_s2.z(), a.gyro_rms_identity_rad_s, a.gyro_rms_rad_s,
+               a.accel_rms_identity_m_s2, a.accel_rms_m_s2);
+  scene.motion = std::make_unique<ImuAlignedMotion>(std::move(scene.motion), a);
+}
+
+// The IMU and the ground truth at its timestamps: simulated, or a real stream restricted to the motion
+// (which is then re-expressed as the real IMU's pose).
+ImuStream make_imu(const SimConfig& config, const SimulateRequest& request, Scene& scene) {
+  const BodyMotion& motion = *scene.motion;
   ImuStream out;
   // A preview of a route skips the initial rest: it starts at rest and sets off.
   TimeNs t0 = motion.start_ns(), t1 = motion.end_ns();
@@ -90,8 +108,9 @@ ImuStream make_imu(const SimConfig& config, const SimulateRequest& request, cons
       out.samples.push_back(s);
       stamps.push_back(s.t_ns);
     }
-    if (stamps.size() < 2) throw InputError(request.imu_path, "no IMU samples within the trajectory's time range");
-    out.groundtruth = groundtruth_at(motion, stamps);
+    if (stamps.size() < 10) throw InputError(request.imu_path, "fewer than 10 IMU samples within the trajectory's time range");
+    align_to_real_imu(scene, out.samples);
+    out.groundtruth = groundtruth_at(*scene.motion, stamps);
   }
   out.t0_ns = out.samples.front().t_ns;
   out.t1_ns = out.samples.back().t_ns;
@@ -210,9 +229,9 @@ void write_tum_copy(const std::vector<GroundTruthState>& states, const fs::path&
 }  // namespace
 
 SequenceReport simulate(const SimConfig& config, const SimulateRequest& request) {
-  const Scene scene = make_scene(config, request);
+  Scene scene = make_scene(config, request);
   const RigCalibration calib = rig_calibration(config);
-  const ImuStream imu = make_imu(config, request, *scene.motion);
+  const ImuStream imu = make_imu(config, request, scene);
 
   SequenceReport report;
   report.scenario = scenario_name(request.scenario);

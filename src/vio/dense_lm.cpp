@@ -15,7 +15,24 @@ LinearFactor make_linear_factor(std::vector<int> slots, const Eigen::MatrixXd& J
   return f;
 }
 
+namespace {
+
+template <int D>
+void accumulate_blocks(const LinearFactor& f, Eigen::MatrixXd& H, Eigen::VectorXd& g) {
+  const int k = static_cast<int>(f.slots.size());
+  for (int a = 0; a < k; ++a) {
+    const int ra = kStateDim * f.slots[a];
+    g.segment<D>(ra) += f.g.segment<D>(D * a);
+    for (int b = 0; b < k; ++b) H.block<D, D>(ra, kStateDim * f.slots[b]) += f.H.block<D, D>(D * a, D * b);
+  }
+}
+
+}  // namespace
+
 void accumulate(const LinearFactor& f, Eigen::MatrixXd& H, Eigen::VectorXd& g) {
+  // Fixed-size blocks for the two widths the factors use (poses, whole states).
+  if (f.block_dim == 6) return accumulate_blocks<6>(f, H, g);
+  if (f.block_dim == kStateDim) return accumulate_blocks<kStateDim>(f, H, g);
   const int k = static_cast<int>(f.slots.size());
   const int d = f.block_dim;
   for (int a = 0; a < k; ++a) {

@@ -27,7 +27,7 @@ double total_cost(const std::vector<LinearFactor>& factors);
 struct LmConfig {
   int max_iterations = 10;
   double initial_lambda = 1e-4;       // Marquardt damping: (H + lambda diag(H)) dx = -g
-  double min_relative_decrease = 1e-6;  // stop when an accepted step improves the cost by less
+  double min_relative_decrease = 1e-4;  // stop when an accepted step improves the cost by less
   double min_step_norm = 1e-9;
 };
 

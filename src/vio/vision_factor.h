@@ -25,11 +25,21 @@ struct StereoExtrinsics {
 
 // Linearization of ||F_p dxi + E_p dx_p + b_p||^2 (paper eq. (2)-(3)), whitened by sigma_norm: four rows
 // per observation (left x, y, right x, y), F_p with one 6-column block [dphi, dp] per observation (the
-// vision residual does not depend on velocity or biases).
+// vision residual does not depend on velocity or biases). F_p is block diagonal, so it is kept per
+// observation: block k holds rows 4k..4k+3 of b_p, E_p and the k-th diagonal block of F_p.
+struct ObservationLinearization {
+  Eigen::Matrix<double, 4, 1> b;  // z - h(xi, x_p) / sigma
+  Eigen::Matrix<double, 4, 6> F;  // d b / d [dphi, dp] of the observing state
+  Eigen::Matrix<double, 4, 3> E;  // d b / d x_p
+};
+
 struct LandmarkLinearization {
-  Eigen::VectorXd b;  // z - h(xi, x_p) / sigma
-  Eigen::MatrixXd F;  // d b / d [dphi, dp] of the observing states
-  Eigen::MatrixXd E;  // d b / d x_p
+  std::vector<ObservationLinearization> blocks;  // in the order of the observations
+
+  // The stacked forms of the paper's eq. (2): b_p (4m), F_p (4m x 6m, block diagonal), E_p (4m x 3).
+  Eigen::VectorXd stacked_b() const;
+  Eigen::MatrixXd stacked_F() const;
+  Eigen::MatrixXd stacked_E() const;
 };
 
 // Landmark in W from all observations: linear triangulation refined by Gauss-Newton on the reprojection

@@ -146,16 +146,16 @@ TEST(Jacobians, VisionFactorStackedResidual) {
   const double sigma = 1.0 / 450.0;
   const LandmarkLinearization lin = linearize_landmark(s.obs, s.states, s.extr, s.x_W, sigma);
   const Residual f = [&](const std::vector<NavState>& st) -> Eigen::VectorXd {
-    return linearize_landmark(s.obs, st, s.extr, s.x_W, sigma).b;
+    return linearize_landmark(s.obs, st, s.extr, s.x_W, sigma).stacked_b();
   };
-  EXPECT_LT(relative_error(lin.F, pose_columns(numeric_jacobian(f, s.states))), 1e-6);
-  Eigen::MatrixXd E_numeric(lin.b.size(), 3);
+  EXPECT_LT(relative_error(lin.stacked_F(), pose_columns(numeric_jacobian(f, s.states))), 1e-6);
+  Eigen::MatrixXd E_numeric(lin.stacked_b().size(), 3);
   for (int d = 0; d < 3; ++d) {
     const Vec3 h = Vec3::Unit(d) * 1e-6;
-    E_numeric.col(d) = (linearize_landmark(s.obs, s.states, s.extr, s.x_W + h, sigma).b -
-                        linearize_landmark(s.obs, s.states, s.extr, s.x_W - h, sigma).b) / 2e-6;
+    E_numeric.col(d) = (linearize_landmark(s.obs, s.states, s.extr, s.x_W + h, sigma).stacked_b() -
+                        linearize_landmark(s.obs, s.states, s.extr, s.x_W - h, sigma).stacked_b()) / 2e-6;
   }
-  EXPECT_LT(relative_error(lin.E, E_numeric), 1e-6);
+  EXPECT_LT(relative_error(lin.stacked_E(), E_numeric), 1e-6);
 }
 
 TEST(Jacobians, StructurelessFactorIsTheNullSpaceProjection) {
@@ -167,18 +167,19 @@ TEST(Jacobians, StructurelessFactorIsTheNullSpaceProjection) {
   const LandmarkLinearization lin = linearize_landmark(s.obs, s.states, s.extr, *x_W, sigma);
   const LinearFactor f = structureless_factor(s.obs, lin);
   // Explicit Q_p = I - E (E^T E)^-1 E^T (paper eq. (4)).
-  const Eigen::MatrixXd Q = Eigen::MatrixXd::Identity(lin.b.size(), lin.b.size()) -
-                            lin.E * (lin.E.transpose() * lin.E).inverse() * lin.E.transpose();
-  EXPECT_LT((Q * lin.E).norm(), 1e-8 * lin.E.norm());
-  const Eigen::MatrixXd QF = Q * lin.F;
+  const Eigen::VectorXd b = lin.stacked_b();
+  const Eigen::MatrixXd E = lin.stacked_E();
+  const Eigen::MatrixXd Q = Eigen::MatrixXd::Identity(b.size(), b.size()) - E * (E.transpose() * E).inverse() * E.transpose();
+  EXPECT_LT((Q * E).norm(), 1e-8 * E.norm());
+  const Eigen::MatrixXd QF = Q * lin.stacked_F();
   EXPECT_LT(relative_error(f.H, QF.transpose() * QF), 1e-9);
-  EXPECT_LT(relative_error(f.g, QF.transpose() * Q * lin.b), 1e-9);
-  EXPECT_NEAR(f.cost, (Q * lin.b).squaredNorm(), 1e-9 * std::max(1.0, f.cost));
+  EXPECT_LT(relative_error(f.g, QF.transpose() * Q * b), 1e-9);
+  EXPECT_NEAR(f.cost, (Q * b).squaredNorm(), 1e-9 * std::max(1.0, f.cost));
   // Q_p F_p is the Jacobian of the residual with the landmark re-triangulated at every state, projected
   // by the fixed Q_p: Q d b(x, x_p*(x))/dx = Q (F + E dx_p*/dx) = Q F.
   const Residual retriangulated = [&](const std::vector<NavState>& st) -> Eigen::VectorXd {
     const std::optional<Vec3> p = triangulate(s.obs, st, s.extr);
-    return Q * linearize_landmark(s.obs, st, s.extr, *p, sigma).b;
+    return Q * linearize_landmark(s.obs, st, s.extr, *p, sigma).stacked_b();
   };
   EXPECT_LT(relative_error(QF, pose_columns(numeric_jacobian(retriangulated, s.states, 1e-7))), 1e-4);
 }
