@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "common/error.h"
 #include "io/dataset_writer.h"
@@ -66,10 +67,11 @@ struct ImuStream {
   std::vector<ImuSample> samples;
   std::vector<GroundTruthState> groundtruth;
   TimeNs t0_ns = 0, t1_ns = 0;  // the sequence's time span
+  std::optional<ImuAlignment> real_imu_alignment;  // set for a real stream
 };
 
 // Re-expresses a recorded motion as the pose of the real IMU (sim/imu_alignment.h) and logs the calibration.
-void align_to_real_imu(Scene& scene, const std::vector<ImuSample>& samples) {
+ImuAlignment align_to_real_imu(Scene& scene, const std::vector<ImuSample>& samples) {
   const ImuAlignment a = align_imu_to_motion(*scene.motion, samples);
   const double body_deg = so3::log(a.R_B_I).norm() * 180.0 / kPi;
   const double tilt_deg = std::acos(std::clamp(-a.gravity_V_m_s2.normalized().z(), -1.0, 1.0)) * 180.0 / kPi;
@@ -81,6 +83,7 @@ void align_to_real_imu(Scene& scene, const std::vector<ImuSample>& samples) {
                a.accel_bias_m_s2.y(), a.accel_bias_m_s2.z(), a.gyro_rms_identity_rad_s, a.gyro_rms_rad_s,
                a.accel_rms_identity_m_s2, a.accel_rms_m_s2);
   scene.motion = std::make_unique<ImuAlignedMotion>(std::move(scene.motion), a);
+  return a;
 }
 
 // The IMU and the ground truth at its timestamps: simulated, or a real stream restricted to the motion
@@ -109,7 +112,7 @@ ImuStream make_imu(const SimConfig& config, const SimulateRequest& request, Scen
       stamps.push_back(s.t_ns);
     }
     if (stamps.size() < 10) throw InputError(request.imu_path, "fewer than 10 IMU samples within the trajectory's time range");
-    align_to_real_imu(scene, out.samples);
+    out.real_imu_alignment = align_to_real_imu(scene, out.samples);
     out.groundtruth = groundtruth_at(*scene.motion, stamps);
   }
   out.t0_ns = out.samples.front().t_ns;
@@ -230,8 +233,13 @@ void write_tum_copy(const std::vector<GroundTruthState>& states, const fs::path&
 
 SequenceReport simulate(const SimConfig& config, const SimulateRequest& request) {
   Scene scene = make_scene(config, request);
-  const RigCalibration calib = rig_calibration(config);
+  RigCalibration calib = rig_calibration(config);
   const ImuStream imu = make_imu(config, request, scene);
+  if (imu.real_imu_alignment) {
+    calib.imu = noise_from_residuals(*imu.real_imu_alignment, calib.imu);
+    spdlog::info("real IMU noise written to rig.yaml: gyro {:.3g} rad/s/sqrt(Hz), accel {:.3g} m/s^2/sqrt(Hz)",
+                 calib.imu.gyro_noise_density, calib.imu.accel_noise_density);
+  }
 
   SequenceReport report;
   report.scenario = scenario_name(request.scenario);

@@ -65,6 +65,9 @@ TEST(ImuAlignment, RecoversMountingGravityAndBiases) {
   EXPECT_GT(a.gyro_rms_identity_rad_s, 0.02);
   EXPECT_LT(a.gyro_rms_rad_s, 1e-5);
   EXPECT_LT(a.accel_rms_m_s2, 1e-3);
+  // An exact stream: the datasheet densities stay.
+  const ImuNoise datasheet;
+  EXPECT_EQ(noise_from_residuals(a, datasheet).gyro_noise_density, datasheet.gyro_noise_density);
 
   // The re-expressed motion is the IMU's in a gravity-aligned world: its exact measurements are the
   // samples without their biases, and it starts where the recording did.
@@ -129,6 +132,13 @@ TEST(ImuAlignment, EurocV101RealImuAgainstGroundTruth) {
   EXPECT_LT(a.accel_rms_m_s2, a.accel_rms_identity_m_s2);  // both dominated by the MAV's vibration
   EXPECT_GT(mounting_deg, 0.3);  // measured: 1.0 deg, the residual rotation the flight must not ignore
   EXPECT_LT(mounting_deg, 3.0);
+  // The stream is far noisier than the datasheet (vibration): the written densities follow the residuals.
+  const ImuNoise datasheet;
+  const ImuNoise noise = noise_from_residuals(a, datasheet);
+  std::cout << "noise densities: gyro " << noise.gyro_noise_density << " accel " << noise.accel_noise_density << "\n";
+  EXPECT_NEAR(noise.gyro_noise_density, a.gyro_rms_rad_s / std::sqrt(200.0), 1e-12);
+  EXPECT_GT(noise.accel_noise_density, 10 * datasheet.accel_noise_density);
+  EXPECT_EQ(noise.accel_random_walk, datasheet.accel_random_walk);
 }
 
 }  // namespace
