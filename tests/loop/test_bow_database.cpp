@@ -6,7 +6,7 @@
 
 #include "loop/bow_database.h"
 #include "loop/image_descriptors.h"
-#include "loop_test_images.h"
+#include "loop_test_data.h"
 #include "test_util.h"
 
 namespace vilslam {

@@ -9,6 +9,7 @@
 
 #include "common/error.h"
 #include "loop/vocabulary.h"
+#include "loop_test_data.h"
 #include "test_util.h"
 
 namespace vilslam {
@@ -163,11 +164,6 @@ TEST(Vocabulary, SaveLoadRoundTripIsExact) {
   EXPECT_EQ(loaded.transform(images[0]), v.transform(images[0]));
 }
 
-std::string read_bytes(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-}
-
 void write_bytes(const std::string& path, const std::string& bytes) {
   std::ofstream f(path, std::ios::binary | std::ios::trunc);
   f << bytes;
@@ -187,7 +183,7 @@ TEST(Vocabulary, TruncatedAndCorruptFilesThrowInputError) {
   const auto dir = test::temp_dir();
   const std::string good = (dir / "voc.bin").string();
   Vocabulary::train(random_images(6, 150, 6), small_config()).save(good);
-  const std::string bytes = read_bytes(good);
+  const std::string bytes = test::read_bytes(good);
   const std::string bad = (dir / "bad.bin").string();
 
   expect_input_error((dir / "missing.bin").string(), "cannot open");

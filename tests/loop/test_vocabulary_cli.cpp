@@ -2,18 +2,12 @@
 // without leaving an output file.
 #include <gtest/gtest.h>
 
-#include <fstream>
-
 #include "loop/vocabulary.h"
+#include "loop_test_data.h"
 #include "test_util.h"
 
 namespace vilslam {
 namespace {
-
-std::string read_bytes(const std::filesystem::path& path) {
-  std::ifstream f(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-}
 
 TEST(VocabularyCli, TrainsOnEurocImagesBitIdentically) {
   VILSLAM_REQUIRE_SHARED_DATA(euroc, "euroc/V1_01_easy_micro");
@@ -24,7 +18,7 @@ TEST(VocabularyCli, TrainsOnEurocImagesBitIdentically) {
   EXPECT_NE(a.output.find("from 5 images"), std::string::npos) << a.output;
   const test::CliResult b = test::run_cli(args + (dir / "b.voc").string());
   ASSERT_EQ(b.exit_code, 0) << b.output;
-  EXPECT_EQ(read_bytes(dir / "a.voc"), read_bytes(dir / "b.voc"));
+  EXPECT_EQ(test::read_bytes(dir / "a.voc"), test::read_bytes(dir / "b.voc"));
   const Vocabulary v = Vocabulary::load((dir / "a.voc").string());
   EXPECT_EQ(v.branching(), 8);
   EXPECT_EQ(v.levels(), 2);

@@ -1,8 +1,10 @@
 #pragma once
-// Real test images for the loop tests: EuRoC V1_01 micro left frames, cut into tiles (distinct places
-// with real texture, since the MAV hardly moves in these 4.7 s), and a noise image unrelated to them.
+// Test data for the loop tests: file bytes, and real images: EuRoC V1_01 micro left frames, cut into tiles (distinct
+// places with real texture, since the MAV hardly moves in these 4.7 s), and a noise image unrelated to them.
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <random>
@@ -10,6 +12,11 @@
 #include <vector>
 
 namespace vilslam::test {
+
+inline std::string read_bytes(const std::filesystem::path& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+}
 
 // The left images of an EuRoC folder (mav0/cam0/data/*.png) in time order.
 inline std::vector<std::string> euroc_left_paths(const std::string& sequence_dir) {
