@@ -96,8 +96,9 @@ MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory
   const TimeNs offset_ns = index.calibration.lidar_time_offset_ns;
   const TimeNs max_gap_ns = s_to_ns(config.max_pose_gap_s);
   for (const ScanEntry& entry : index.scans) {
-    // Cheap pre-check on the sweep start before loading; the end is known only from the points.
-    if (T_W_L.empty() || entry.t_ns + offset_ns > T_W_L.back().t_ns || entry.t_ns + offset_ns < T_W_L.front().t_ns) {
+    // The sweep start is checked before loading; the end is known only from the points.
+    const TimeNs start_t_ns = entry.t_ns + offset_ns;
+    if (!covers(T_W_L, start_t_ns, start_t_ns, max_gap_ns)) {
       ++result.stats.sweeps_skipped;
       continue;
     }
