@@ -1,0 +1,64 @@
+// `vilslam map DATASET --poses lidar.tum --out map.ply`: the dense map of the sweeps stitched with the
+// given LiDAR poses (docs/map.md).
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "common/error.h"
+#include "io/cloud_io.h"
+#include "io/trajectory_io.h"
+#include "map/map_builder.h"
+#include "vilslam/command.h"
+
+namespace {
+
+using namespace vilslam;
+
+struct Options {
+  std::string dataset, poses_path, out_path;
+  map::MapBuilderConfig config;
+  unsigned min_hits = 1;
+  bool no_dewarp = false;
+  bool also_pcd = false;
+};
+
+void check_cloud_extension(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext != ".ply" && ext != ".pcd") throw std::invalid_argument("--out must end in .ply or .pcd: " + path);
+}
+
+vilslam::cli::Command reg("map", "Dense map: the dataset's sweeps dewarped and stitched with LiDAR poses",
+                          [](CLI::App& app) {
+  auto o = std::make_shared<Options>();
+  app.add_option("dataset", o->dataset, "Dataset folder")->required();
+  app.add_option("--poses", o->poses_path, "LiDAR poses T_W_L, TUM (e.g. lidar.tum of `vilslam run`)")->required();
+  app.add_option("--out", o->out_path, "Map cloud to write (.ply or .pcd)")->required();
+  app.add_option("--voxel", o->config.voxel_size_m, "Voxel size, m")->capture_default_str();
+  app.add_option("--min-hits", o->min_hits, "Keep voxels with at least this many points")->capture_default_str();
+  app.add_option("--min-range", o->config.min_range_m, "Drop returns closer than this, m")->capture_default_str();
+  app.add_option("--max-range", o->config.max_range_m, "Drop returns farther than this, m")->capture_default_str();
+  app.add_flag("--no-dewarp", o->no_dewarp, "Do not dewarp sweeps (every point takes the sweep-end pose)");
+  app.add_flag("--pcd", o->also_pcd, "Also write the map as binary PCD next to --out");
+  return [o]() {
+    check_cloud_extension(o->out_path);
+    const Trajectory T_W_L = read_trajectory(o->poses_path, TrajectoryFormat::kTum);
+    if (T_W_L.empty()) throw InputError(o->poses_path, "no poses");
+    o->config.dewarp = !o->no_dewarp;
+    const map::MapBuildResult built = map::build_dense_map(o->dataset, T_W_L, o->config);
+    PointCloud cloud;
+    cloud.points = built.map.points(o->min_hits);
+    if (cloud.points.empty()) throw InputError(o->dataset, "no voxel has " + std::to_string(o->min_hits) + " hits");
+    write_cloud(o->out_path, cloud);
+    if (o->also_pcd) write_cloud(std::filesystem::path(o->out_path).replace_extension(".pcd").string(), cloud);
+    const map::MapBuildStats& s = built.stats;
+    std::printf("sweeps: %zu used, %zu skipped (not covered by the poses)\n", s.sweeps_used, s.sweeps_skipped);
+    std::printf("points: %zu inserted, %zu out of range\n", s.points_inserted, s.points_out_of_range);
+    std::printf("voxels: %zu of %.4f m, %zu written (min hits %u), hash table %.1f MB\n", built.map.num_voxels(),
+                built.map.voxel_size_m(), cloud.size(), o->min_hits, built.map.memory_bytes() / 1e6);
+    return 0;
+  };
+});
+
+}  // namespace

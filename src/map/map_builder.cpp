@@ -1,0 +1,121 @@
+#include "map/map_builder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+#include "common/error.h"
+#include "io/dataset_index.h"
+#include "lidar/dewarp.h"
+
+namespace vilslam::map {
+
+namespace {
+
+void check_config(const MapBuilderConfig& c) {
+  if (!(c.min_range_m >= 0.0) || !(c.max_range_m > c.min_range_m)) {
+    throw std::invalid_argument("range filter needs 0 <= min_range_m < max_range_m");
+  }
+  if (!(c.max_pose_gap_s > 0.0)) throw std::invalid_argument("max_pose_gap_s must be positive");
+}
+
+void check_poses(const Trajectory& T_W_L) {
+  for (std::size_t i = 1; i < T_W_L.size(); ++i) {
+    if (T_W_L[i].t_ns <= T_W_L[i - 1].t_ns) {
+      throw std::invalid_argument("pose times must increase strictly (pose " + std::to_string(i + 1) + ")");
+    }
+  }
+}
+
+// First pose at or after t_ns.
+Trajectory::const_iterator pose_at_or_after(const Trajectory& T_W_L, TimeNs t_ns) {
+  return std::lower_bound(T_W_L.begin(), T_W_L.end(), t_ns, [](const TimedPose& p, TimeNs t) { return p.t_ns < t; });
+}
+
+// True when poses bracket every instant of [start_t_ns, end_t_ns] with no gap above max_gap_ns.
+bool covers(const Trajectory& T_W_L, TimeNs start_t_ns, TimeNs end_t_ns, TimeNs max_gap_ns) {
+  if (T_W_L.empty() || start_t_ns < T_W_L.front().t_ns || end_t_ns > T_W_L.back().t_ns) return false;
+  auto first = pose_at_or_after(T_W_L, start_t_ns);
+  if (first != T_W_L.begin() && first->t_ns != start_t_ns) --first;
+  const auto last = pose_at_or_after(T_W_L, end_t_ns);
+  for (auto it = first; it != last; ++it) {
+    if ((it + 1)->t_ns - it->t_ns > max_gap_ns) return false;
+  }
+  return true;
+}
+
+// Pose at t_ns interpolated between its neighbours (t_ns within the trajectory's span).
+SE3 interpolated(const Trajectory& T_W_L, TimeNs t_ns) {
+  const auto after = pose_at_or_after(T_W_L, t_ns);
+  if (after == T_W_L.end()) return T_W_L.back().T_W_B;
+  if (after == T_W_L.begin() || after->t_ns == t_ns) return after->T_W_B;
+  const TimedPose& before = *(after - 1);
+  const double alpha = static_cast<double>(t_ns - before.t_ns) / static_cast<double>(after->t_ns - before.t_ns);
+  return interpolate(before.T_W_B, after->T_W_B, alpha);
+}
+
+std::string span_text(const Trajectory& T_W_L) {
+  if (T_W_L.empty()) return {};
+  char buf[96];
+  std::snprintf(buf, sizeof buf, " (%.3f s to %.3f s)", ns_to_s(T_W_L.front().t_ns), ns_to_s(T_W_L.back().t_ns));
+  return buf;
+}
+
+// The sweep's points in W that pass the range filter (range of the raw return).
+std::vector<Eigen::Vector3f> sweep_in_world(const LidarScan& raw, const Trajectory& T_W_L,
+                                            const MapBuilderConfig& config, std::size_t& out_of_range) {
+  const auto pose_at = [&T_W_L](TimeNs t_ns) { return interpolated(T_W_L, t_ns); };
+  const LidarScan end_frame = config.dewarp ? lidar::dewarp(raw, pose_at) : raw;
+  const SE3 T_W_end = pose_at(raw.end_t_ns());
+  std::vector<Eigen::Vector3f> points_W;
+  points_W.reserve(raw.points.size());
+  for (std::size_t i = 0; i < raw.points.size(); ++i) {
+    const LidarPoint& r = raw.points[i];
+    const double range_m = std::sqrt(double(r.x) * r.x + double(r.y) * r.y + double(r.z) * r.z);
+    if (range_m < config.min_range_m || range_m > config.max_range_m) {
+      ++out_of_range;
+      continue;
+    }
+    const LidarPoint& p = end_frame.points[i];
+    points_W.push_back((T_W_end * Vec3(p.x, p.y, p.z)).cast<float>());
+  }
+  return points_W;
+}
+
+}  // namespace
+
+MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory& T_W_L, const MapBuilderConfig& config) {
+  check_config(config);
+  check_poses(T_W_L);
+  MapBuildResult result{DenseMap(config.voxel_size_m), {}};
+  // The index, not the event stream: only the scans are loaded, never the images.
+  const DatasetIndex index = index_dataset(dataset_path);
+  if (index.scans.empty()) throw InputError(dataset_path, "dataset has no LiDAR scans");
+  const TimeNs offset_ns = index.calibration.lidar_time_offset_ns;
+  const TimeNs max_gap_ns = s_to_ns(config.max_pose_gap_s);
+  for (const ScanEntry& entry : index.scans) {
+    // Cheap pre-check on the sweep start before loading; the end is known only from the points.
+    if (T_W_L.empty() || entry.t_ns + offset_ns > T_W_L.back().t_ns || entry.t_ns + offset_ns < T_W_L.front().t_ns) {
+      ++result.stats.sweeps_skipped;
+      continue;
+    }
+    LidarScan scan = load_scan(entry, index.scan_encoding);
+    scan.t_ns += offset_ns;
+    if (scan.points.empty() || !covers(T_W_L, scan.t_ns, scan.end_t_ns(), max_gap_ns)) {
+      ++result.stats.sweeps_skipped;
+      continue;
+    }
+    const std::vector<Eigen::Vector3f> points_W = sweep_in_world(scan, T_W_L, config, result.stats.points_out_of_range);
+    result.stats.points_inserted += result.map.insert(points_W);
+    ++result.stats.sweeps_used;
+  }
+  if (result.stats.sweeps_used == 0) {
+    throw InputError(dataset_path, "no LiDAR sweep lies within the time span of the " + std::to_string(T_W_L.size()) +
+                                       " poses" + span_text(T_W_L));
+  }
+  return result;
+}
+
+}  // namespace vilslam::map

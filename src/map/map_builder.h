@@ -1,0 +1,39 @@
+#pragma once
+// Post processing of the paper: "we stitch the dewarped LiDAR scans with the best estimated LiDAR poses
+// to have the dense mapping results". Every sweep the poses cover is dewarped to its end with the poses
+// interpolated over the sweep, moved into W by the pose at its end and averaged into the voxel map.
+#include <cstddef>
+#include <string>
+
+#include "common/types.h"
+#include "map/dense_map.h"
+
+namespace vilslam::map {
+
+struct MapBuilderConfig {
+  double voxel_size_m = 0.01;
+  double min_range_m = 0.5;     // returns closer to the sensor than this are dropped (rig, operator)
+  double max_range_m = 50.0;    // and farther ones (pose errors grow with range)
+  double max_pose_gap_s = 0.25; // a sweep needs poses no farther apart than this over its whole span
+  bool dewarp = true;           // false: every point takes the sweep-end pose (for comparison)
+};
+
+struct MapBuildStats {
+  std::size_t sweeps_used = 0;
+  std::size_t sweeps_skipped = 0;     // not covered by the poses
+  std::size_t points_inserted = 0;
+  std::size_t points_out_of_range = 0;
+};
+
+struct MapBuildResult {
+  DenseMap map;
+  MapBuildStats stats;
+};
+
+// T_W_L: LiDAR poses sorted by strictly increasing time, in the IMU clock (as `vilslam run` writes
+// lidar.tum: one per sweep end), or denser. Sweep times are moved to the IMU clock with the
+// calibration's lidar_time_offset_ns. Throws InputError naming the dataset when it is missing, has no
+// LiDAR, or no sweep is covered by the poses; std::invalid_argument on a bad config or bad poses.
+MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory& T_W_L, const MapBuilderConfig& config);
+
+}  // namespace vilslam::map

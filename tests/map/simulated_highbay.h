@@ -1,0 +1,37 @@
+#pragma once
+// `simulate highbay --preview --seed 3`, written once per test process, and its ground-truth LiDAR poses.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "io/dataset.h"
+#include "test_util.h"
+
+namespace vilslam::test {
+
+constexpr std::uint64_t kHighbaySeed = 3;
+
+// Path of the simulated dataset ("" after a failure, which is reported).
+inline const std::string& highbay_preview() {
+  static const std::string path = [] {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / "vilslam_tests" / std::to_string(::getpid()) / "map_highbay_seed3";
+    std::filesystem::remove_all(dir);
+    const CliResult sim =
+        run_cli("simulate highbay --preview --seed " + std::to_string(kHighbaySeed) + " --out " + dir.string());
+    EXPECT_EQ(sim.exit_code, 0) << sim.output;
+    return sim.exit_code == 0 ? dir.string() : std::string();
+  }();
+  return path;
+}
+
+// T_W_L = T_W_I T_I_L at every ground-truth state.
+inline Trajectory groundtruth_lidar_poses(const std::string& dataset) {
+  const auto reader = open_dataset(dataset);
+  Trajectory T_W_L;
+  for (const GroundTruthState& g : reader->groundtruth()) T_W_L.push_back({g.t_ns, g.T_W_I * reader->calibration().T_I_L});
+  return T_W_L;
+}
+
+}  // namespace vilslam::test

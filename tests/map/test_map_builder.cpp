@@ -1,0 +1,135 @@
+// build_dense_map on a simulated highbay: with true poses the map lies on the world's surfaces within
+// the range noise; drifted poses and skipping the dewarping both make it clearly worse.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "common/error.h"
+#include "eval/map_error.h"
+#include "map/map_builder.h"
+#include "sim/world.h"
+#include "simulated_highbay.h"
+
+namespace vilslam::map {
+namespace {
+
+// Median exact distance of the map points (every 7th) to the simulated world's surfaces.
+double median_distance_to_world(const DenseMap& map, const sim::World& world) {
+  const std::vector<Eigen::Vector3f> points = map.points();
+  std::vector<double> d;
+  for (std::size_t i = 0; i < points.size(); i += 7) d.push_back(world.distance_to_surface(points[i].cast<double>()));
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  return d[d.size() / 2];
+}
+
+// The drift grows linearly from zero at the first pose to xi at the last: T' = Exp(a xi) T.
+Trajectory drifted(const Trajectory& T_W_L, const Vec6& xi) {
+  Trajectory out = T_W_L;
+  const double span = static_cast<double>(T_W_L.back().t_ns - T_W_L.front().t_ns);
+  for (TimedPose& p : out) {
+    const double a = static_cast<double>(p.t_ns - T_W_L.front().t_ns) / span;
+    p.T_W_B = SE3::exp(a * xi) * p.T_W_B;
+  }
+  return out;
+}
+
+// MRE as `vilslam eval-map` computes it (ICP-aligned, against the dataset's reference model).
+eval::MapError eval_map(const DenseMap& map, const std::string& dataset) {
+  PointCloud cloud;
+  cloud.points = map.points();
+  const PointCloud model = read_cloud(open_dataset(dataset)->reference_model_path());
+  return eval::compute_map_error(cloud, model, eval::MapErrorConfig{});
+}
+
+class MapBuilderHighbay : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dataset_ = test::highbay_preview();
+    ASSERT_FALSE(dataset_.empty());
+    T_W_L_ = test::groundtruth_lidar_poses(dataset_);
+    ASSERT_GT(T_W_L_.size(), 10u);
+  }
+  std::string dataset_;
+  Trajectory T_W_L_;
+};
+
+TEST_F(MapBuilderHighbay, TruePosesPutPointsOnSurfacesAndDriftDoesNot) {
+  const sim::World world = sim::World::generate(sim::Scenario::kHighbay, test::kHighbaySeed);
+  const MapBuildResult truth = build_dense_map(dataset_, T_W_L_, MapBuilderConfig{});
+  const std::size_t scans = open_dataset(dataset_)->summary().lidar_scans;
+  EXPECT_EQ(truth.stats.sweeps_used + truth.stats.sweeps_skipped, scans);
+  EXPECT_GE(truth.stats.sweeps_used, scans - 1);
+  EXPECT_GT(truth.map.num_voxels(), 10000u);
+  EXPECT_LE(truth.map.num_voxels(), truth.stats.points_inserted);
+
+  Vec6 xi;
+  xi << 0.05, 0, 0, 0, 0, 1.0 * M_PI / 180.0;  // 5 cm along x, 1 deg of yaw by the end
+  const MapBuildResult drift = build_dense_map(dataset_, drifted(T_W_L_, xi), MapBuilderConfig{});
+
+  const double true_m = median_distance_to_world(truth.map, world);
+  const double drift_m = median_distance_to_world(drift.map, world);
+  const eval::MapError true_mre = eval_map(truth.map, dataset_);
+  const eval::MapError drift_mre = eval_map(drift.map, dataset_);
+  std::printf("median distance to the world: true poses %.5f m, drifted %.5f m\n", true_m, drift_m);
+  std::printf("eval-map MRE (model spacing 0.2 m) mean/median/p95: true %.4f/%.4f/%.4f m, drifted %.4f/%.4f/%.4f m\n",
+              true_mre.mean_m, true_mre.median_m, true_mre.p95_m, drift_mre.mean_m, drift_mre.median_m, drift_mre.p95_m);
+  EXPECT_LT(true_m, 0.02);  // the simulated range noise sigma is 0.02 m
+  EXPECT_GT(drift_m, 1.5 * true_m);
+  EXPECT_GT(drift_mre.median_m, true_mre.median_m);
+}
+
+TEST_F(MapBuilderHighbay, DewarpingMattersWhileMoving) {
+  const sim::World world = sim::World::generate(sim::Scenario::kHighbay, test::kHighbaySeed);
+  MapBuilderConfig config;
+  const double dewarped_m = median_distance_to_world(build_dense_map(dataset_, T_W_L_, config).map, world);
+  config.dewarp = false;
+  const double raw_m = median_distance_to_world(build_dense_map(dataset_, T_W_L_, config).map, world);
+  std::printf("median distance to the world: dewarped %.5f m, not dewarped %.5f m\n", dewarped_m, raw_m);
+  EXPECT_GT(raw_m, 1.3 * dewarped_m);
+}
+
+TEST_F(MapBuilderHighbay, SweepEndPosesAloneAreInterpolated) {
+  // Keep only the poses nearest each sweep end, as `vilslam run` writes lidar.tum.
+  const auto reader = open_dataset(dataset_);
+  Trajectory ends;
+  while (const auto event = reader->next()) {
+    if (const auto* scan = std::get_if<LidarScan>(&event->data)) {
+      const TimeNs end = scan->end_t_ns() + reader->calibration().lidar_time_offset_ns;
+      const auto it = std::min_element(T_W_L_.begin(), T_W_L_.end(), [end](const TimedPose& a, const TimedPose& b) {
+        return std::llabs(a.t_ns - end) < std::llabs(b.t_ns - end);
+      });
+      ends.push_back({end, it->T_W_B});
+    }
+  }
+  ASSERT_GT(ends.size(), 3u);
+  const MapBuildResult r = build_dense_map(dataset_, ends, MapBuilderConfig{});
+  EXPECT_EQ(r.stats.sweeps_skipped, 1u);  // the first sweep starts before the first pose
+  EXPECT_EQ(r.stats.sweeps_used, ends.size() - 1);
+  const sim::World world = sim::World::generate(sim::Scenario::kHighbay, test::kHighbaySeed);
+  EXPECT_LT(median_distance_to_world(r.map, world), 0.025);
+}
+
+TEST_F(MapBuilderHighbay, RangeFilterAndBadInput) {
+  MapBuilderConfig near;
+  near.max_range_m = 5.0;
+  const MapBuildResult r = build_dense_map(dataset_, T_W_L_, near);
+  EXPECT_GT(r.stats.points_out_of_range, 0u);
+  const MapBuildResult all = build_dense_map(dataset_, T_W_L_, MapBuilderConfig{});
+  EXPECT_LT(r.stats.points_inserted, all.stats.points_inserted);
+
+  Trajectory late = T_W_L_;
+  for (TimedPose& p : late) p.t_ns += 1000 * kNsPerSecond;
+  EXPECT_THROW(build_dense_map(dataset_, late, MapBuilderConfig{}), InputError);
+  EXPECT_THROW(build_dense_map(dataset_ + "_missing", T_W_L_, MapBuilderConfig{}), InputError);
+  Trajectory repeated = T_W_L_;
+  repeated[5].t_ns = repeated[4].t_ns;
+  EXPECT_THROW(build_dense_map(dataset_, repeated, MapBuilderConfig{}), std::invalid_argument);
+  MapBuilderConfig bad;
+  bad.voxel_size_m = std::nan("");
+  EXPECT_THROW(build_dense_map(dataset_, T_W_L_, bad), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace vilslam::map
