@@ -1,5 +1,6 @@
 // `vilslam eval-map --map FILE --model FILE ...`: map registration error (MRE) of a map cloud against a
 // reference model, after ICP alignment (docs/evaluation.md).
+#include <cstddef>
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
@@ -22,6 +23,7 @@ struct Options {
   bool no_align = false;
   double max_correspondence_m = 1.0;
   int max_iterations = 50;
+  std::size_t icp_points = eval::MapErrorConfig{}.max_icp_points;
 };
 
 // The map in the model frame, with each point's error as its intensity.
@@ -46,6 +48,8 @@ vilslam::cli::Command reg("eval-map", "Map registration error (MRE) of a map clo
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_option("--max-iter", o->max_iterations, "ICP iteration limit")->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_option("--icp-points", o->icp_points, "At most this many map points (every k-th) take part in ICP; 0 = all")
+      ->capture_default_str();
   app.add_option("--json", o->json_path, "Also write the results as JSON to this file");
   app.add_option("--colored", o->colored_path, "Write the aligned map with per-point error as intensity (.ply/.pcd)");
   return [o]() {
@@ -58,6 +62,7 @@ vilslam::cli::Command reg("eval-map", "Map registration error (MRE) of a map clo
     config.icp.mode = o->icp == "point2point" ? eval::IcpMode::kPointToPoint : eval::IcpMode::kPointToPlane;
     config.icp.max_correspondence_m = o->max_correspondence_m;
     config.icp.max_iterations = o->max_iterations;
+    config.max_icp_points = o->icp_points;
     eval::MapError e;
     try {
       e = eval::compute_map_error(map, model, config);
@@ -68,6 +73,9 @@ vilslam::cli::Command reg("eval-map", "Map registration error (MRE) of a map clo
                 config.align ? o->icp.c_str() : "off", e.icp.iterations, e.icp.converged ? "converged" : "not converged",
                 e.icp.inliers, e.icp.rmse_m);
     std::printf("MRE: mean %.5f m  median %.5f m  p95 %.5f m\n", e.mean_m, e.median_m, e.p95_m);
+    if (config.align && !e.icp.converged)
+      std::fprintf(stderr, "warning: ICP did not converge; the map may not start close to the model's frame "
+                           "(ICP only pairs points within --max-corr %.2f m)\n", o->max_correspondence_m);
     if (!o->json_path.empty()) write_file_atomic(o->json_path, eval::map_error_json(e, config));
     if (!o->colored_path.empty()) write_cloud(o->colored_path, colored(map, e));
     return 0;

@@ -10,6 +10,19 @@
 #include "eval/stats.h"
 
 namespace vilslam::eval {
+namespace {
+
+// Every k-th point, k = ceil(n / max_points): a deterministic, evenly spread subsample.
+std::vector<Eigen::Vector3f> strided_subsample(const std::vector<Eigen::Vector3f>& points, std::size_t max_points) {
+  if (max_points == 0 || points.size() <= max_points) return points;
+  const std::size_t stride = (points.size() + max_points - 1) / max_points;
+  std::vector<Eigen::Vector3f> out;
+  out.reserve(points.size() / stride + 1);
+  for (std::size_t i = 0; i < points.size(); i += stride) out.push_back(points[i]);
+  return out;
+}
+
+}  // namespace
 
 MapError compute_map_error(const PointCloud& map, const PointCloud& model, const MapErrorConfig& config) {
   if (map.points.empty() || model.points.empty()) throw std::invalid_argument("map error needs non-empty clouds");
@@ -18,7 +31,7 @@ MapError compute_map_error(const PointCloud& map, const PointCloud& model, const
   if (config.align) {
     const bool to_plane = config.icp.mode == IcpMode::kPointToPlane;
     const auto normals = to_plane ? estimate_normals(index, config.icp.normal_neighbours) : std::vector<Eigen::Vector3f>{};
-    out.icp = align_icp(map.points, index, normals, config.icp);
+    out.icp = align_icp(strided_subsample(map.points, config.max_icp_points), index, normals, config.icp);
   }
   out.per_point_m.resize(map.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, map.size(), 1024), [&](const auto& range) {

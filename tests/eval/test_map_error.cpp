@@ -54,6 +54,22 @@ TEST_P(MapErrorModes, CloudAgainstItselfAfterKnownOffset) {
   EXPECT_EQ(raw.icp.iterations, 0);
 }
 
+// ICP on a strided subsample of the map lands on the same alignment; errors still cover every point.
+TEST(MapError, SubsampledIcpKeepsTheAlignmentAndScoresEveryPoint) {
+  const PointCloud model = structured_cloud(3);
+  const PointCloud map = moved(model, kOffset);
+  MapErrorConfig config;
+  config.max_icp_points = 1000;  // of 15000
+  const MapError e = compute_map_error(map, model, config);
+  EXPECT_TRUE(e.icp.converged);
+  EXPECT_LE(e.icp.inliers, 1000u);
+  const SE3 residual = e.icp.T_model_map * kOffset;
+  EXPECT_LT(residual.translation().norm(), 1e-3);
+  EXPECT_LT(so3::log(residual.quat()).norm(), 1e-4);
+  ASSERT_EQ(e.per_point_m.size(), map.size());
+  EXPECT_LT(e.p95_m, 1e-3);
+}
+
 INSTANTIATE_TEST_SUITE_P(Icp, MapErrorModes, ::testing::Values(IcpMode::kPointToPoint, IcpMode::kPointToPlane));
 
 TEST(MapError, IsDeterministic) {
