@@ -8,6 +8,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,12 @@ inline std::string shared_data(const std::string& relative) {
 #define VILSLAM_REQUIRE_SHARED_DATA(var, relative)                                        \
   const std::string var = ::vilslam::test::shared_data(relative);                         \
   if (var.empty()) GTEST_SKIP() << "shared data absent: " << VILSLAM_SHARED_DATA << "/" << relative
+
+// The whole file as bytes ("" when it cannot be read).
+inline std::string read_file_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
 
 // A fresh empty folder under the temp dir, unique per test and per process (test binaries of several
 // worktrees may run at the same time).

@@ -5,17 +5,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 namespace vilslam::test {
-
-inline std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 // The number after "key": inside the JSON object introduced by "object": (first match after it).
 inline double json_number(const std::string& doc, const std::string& object, const std::string& key) {

@@ -9,7 +9,6 @@ namespace vilslam {
 namespace {
 
 using test::json_number;
-using test::slurp;
 
 TEST(CmdEval, ReproducesEvoOnKitti00) {
   VILSLAM_REQUIRE_SHARED_DATA(dir, "trajectories");
@@ -18,7 +17,7 @@ TEST(CmdEval, ReproducesEvoOnKitti00) {
       test::run_cli("eval --est " + dir + "/KITTI_00_ORB.txt --gt " + dir + "/KITTI_00_gt.txt --format kitti --times " +
                     dir + "/KITTI_00_gt_times.txt --align se3 --delta 10 --delta-unit m --json " + json.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::string doc = slurp(json);
+  const std::string doc = test::read_file_bytes(json);
   constexpr double kTol = 5e-6;
   EXPECT_NEAR(json_number(doc, "ape", "rmse"), 1.30345, kTol);
   EXPECT_NEAR(json_number(doc, "ape", "mean"), 1.15700, kTol);
@@ -36,7 +35,7 @@ TEST(CmdEval, IndexTimesGiveTheSameResult) {
   const test::CliResult r = test::run_cli("eval --est " + dir + "/KITTI_00_ORB.txt --gt " + dir +
                                           "/KITTI_00_gt.txt --delta 10 --delta-unit m --json " + json.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NEAR(json_number(slurp(json), "ape", "rmse"), 1.30345, 5e-6);
+  EXPECT_NEAR(json_number(test::read_file_bytes(json), "ape", "rmse"), 1.30345, 5e-6);
 }
 
 TEST(CmdEval, EurocGroundTruthAgainstItselfWithPosYaw) {
@@ -45,7 +44,7 @@ TEST(CmdEval, EurocGroundTruthAgainstItselfWithPosYaw) {
   const test::CliResult r = test::run_cli("eval --est " + gt + " --gt " + gt + " --align posyaw --json " +
                                           (dir / "v.json").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::string doc = slurp(dir / "v.json");
+  const std::string doc = test::read_file_bytes(dir / "v.json");
   EXPECT_LT(json_number(doc, "ape", "max"), 1e-9);
   EXPECT_LT(json_number(doc, "rpe", "max"), 1e-9);
   EXPECT_EQ(json_number(doc, "matched_poses", "matched_poses"), 16702);
@@ -92,7 +91,7 @@ TEST(CmdEvalMap, ReportsMreAndWritesColoredMap) {
   const test::CliResult r =
       test::run_cli(args + " --json " + (dir / "mre.json").string() + " --colored " + (dir / "colored.ply").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::string doc = slurp(dir / "mre.json");
+  const std::string doc = test::read_file_bytes(dir / "mre.json");
   EXPECT_LT(json_number(doc, "mean_m", "mean_m"), 1e-4);
   const PointCloud colored = read_cloud((dir / "colored.ply").string());
   ASSERT_EQ(colored.size(), map.size());
@@ -100,7 +99,7 @@ TEST(CmdEvalMap, ReportsMreAndWritesColoredMap) {
   EXPECT_LT(colored.intensity[100], 1e-4);
   const test::CliResult raw = test::run_cli(args + " --no-align --json " + (dir / "raw.json").string());
   ASSERT_EQ(raw.exit_code, 0) << raw.output;
-  EXPECT_GT(json_number(slurp(dir / "raw.json"), "mean_m", "mean_m"), 0.01);
+  EXPECT_GT(json_number(test::read_file_bytes(dir / "raw.json"), "mean_m", "mean_m"), 0.01);
   const test::CliResult missing = test::run_cli("eval-map --map " + (dir / "none.ply").string() + " --model " +
                                                 (dir / "model.ply").string());
   EXPECT_EQ(missing.exit_code, 2);

@@ -16,7 +16,6 @@ namespace {
 namespace fs = std::filesystem;
 
 using test::json_number;
-using test::slurp;
 
 std::string fixed3(double v) {
   char buf[32];
@@ -46,7 +45,7 @@ TEST(CmdOdometryTable, PreviewHighbaySimulatesThenReuses) {
   for (const char* sub : {"highbay/groundtruth.tum", "highbay_vil/vio_camera.tum", "highbay_vil/lidar.tum",
                           "highbay_lidar-only/lidar.tum", "highbay_lidar-only/degeneracy.csv"})
     EXPECT_TRUE(fs::exists(work / sub)) << sub;
-  const std::string text = slurp(page);
+  const std::string text = test::read_file_bytes(page);
   const std::string row = table_row(text, "highbay");
   ASSERT_FALSE(row.empty()) << text;
   EXPECT_NE(row.find("| simulated, seed 3, preview |"), std::string::npos) << row;
@@ -60,7 +59,7 @@ TEST(CmdOdometryTable, PreviewHighbaySimulatesThenReuses) {
                                            (work / "highbay/groundtruth.tum").string() + " --align posyaw --json " +
                                            json.string());
   ASSERT_EQ(ev.exit_code, 0) << ev.output;
-  const std::string doc = slurp(json);
+  const std::string doc = test::read_file_bytes(json);
   EXPECT_NE(row.find("| " + fixed3(json_number(doc, "fde_start_aligned_percent", "fde_start_aligned_percent")) + " %†"),
             std::string::npos)
       << row;
@@ -70,7 +69,7 @@ TEST(CmdOdometryTable, PreviewHighbaySimulatesThenReuses) {
                           (work / "highbay/groundtruth.tum").string() + " --align se3 --json " + json_se3.string())
                 .exit_code,
             0);
-  EXPECT_NE(row.find("| " + fixed3(json_number(slurp(json_se3), "ape", "rmse")) + " / "), std::string::npos) << row;
+  EXPECT_NE(row.find("| " + fixed3(json_number(test::read_file_bytes(json_se3), "ape", "rmse")) + " / "), std::string::npos) << row;
 
   // LiDAR-only ATE (se3) against the ground truth in the LiDAR frame, from the written lidar.tum.
   const auto reader = open_dataset((work / "highbay").string());
@@ -90,7 +89,7 @@ TEST(CmdOdometryTable, PreviewHighbaySimulatesThenReuses) {
                                               " --presets highbay --seed 3 --preview --out " + page2.string());
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_EQ(again.output.find("simulate highbay"), std::string::npos) << again.output;
-  const std::string row2 = table_row(slurp(page2), "highbay");
+  const std::string row2 = table_row(test::read_file_bytes(page2), "highbay");
   EXPECT_NE(row2.find("| reused `" + (work2 / "highbay").string() + "` → `"), std::string::npos) << row2;
   EXPECT_EQ(after_source(row2), after_source(row));
 }

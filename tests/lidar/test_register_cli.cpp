@@ -12,13 +12,6 @@ namespace {
 
 const std::string kConfig = std::string(VILSLAM_SOURCE_DIR) + "/config/lidar_hdl32e.yaml";
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 Mat4 read_matrix(const std::string& path) {
   std::ifstream in(path);
   Mat4 T;
@@ -60,7 +53,7 @@ TEST(RegisterCli, RealPairLandsOnBothReferencesFromIdentity) {
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("T_target_source"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("degeneracy"), std::string::npos) << r.output;
-    const Mat4 T = json_matrix(read_text(json));
+    const Mat4 T = json_matrix(test::read_file_bytes(json));
     expect_close(T, ref_small, pair[2] + " vs small_gicp");
     expect_close(T, ref_fast, pair[2] + " vs fast_gicp");
     // Far from identity, so landing near the references is the registration's doing.
@@ -77,7 +70,7 @@ TEST(RegisterCli, TwoRunsAreBitIdentical) {
     const test::CliResult r = test::run_cli("register --source " + lidar + "/small_gicp/source.ply --target " +
                                             lidar + "/small_gicp/target.ply --config " + kConfig + " --json " + json);
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    outputs[run] = read_text(json);
+    outputs[run] = test::read_file_bytes(json);
   }
   EXPECT_FALSE(outputs[0].empty());
   EXPECT_EQ(outputs[0], outputs[1]);
@@ -87,12 +80,12 @@ TEST(RegisterCli, InitialGuessFileIsUsedAndBadInputExitsWithTwo) {
   VILSLAM_REQUIRE_SHARED_DATA(lidar, "lidar");
   const auto dir = test::temp_dir();
   const std::string init = (dir / "init.txt").string();
-  std::ofstream(init) << read_text(lidar + "/small_gicp/T_target_source.txt");
+  std::ofstream(init) << test::read_file_bytes(lidar + "/small_gicp/T_target_source.txt");
   const std::string json = (dir / "r.json").string();
   const std::string args = "register --source " + lidar + "/small_gicp/source.ply --target " + lidar +
                            "/small_gicp/target.ply --config " + kConfig;
   ASSERT_EQ(test::run_cli(args + " --init " + init + " --json " + json).exit_code, 0);
-  expect_close(json_matrix(read_text(json)), read_matrix(init), "from the reference");
+  expect_close(json_matrix(test::read_file_bytes(json)), read_matrix(init), "from the reference");
 
   std::ofstream(dir / "bad_init.txt") << "1 0 0\n";
   const test::CliResult bad_init = test::run_cli(args + " --init " + (dir / "bad_init.txt").string());

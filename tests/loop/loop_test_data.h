@@ -13,11 +13,6 @@
 
 namespace vilslam::test {
 
-inline std::string read_bytes(const std::filesystem::path& path) {
-  std::ifstream f(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-}
-
 // The left images of an EuRoC folder (mav0/cam0/data/*.png) in time order.
 inline std::vector<std::string> euroc_left_paths(const std::string& sequence_dir) {
   std::vector<std::string> paths;

@@ -183,7 +183,7 @@ TEST(Vocabulary, TruncatedAndCorruptFilesThrowInputError) {
   const auto dir = test::temp_dir();
   const std::string good = (dir / "voc.bin").string();
   Vocabulary::train(random_images(6, 150, 6), small_config()).save(good);
-  const std::string bytes = test::read_bytes(good);
+  const std::string bytes = test::read_file_bytes(good);
   const std::string bad = (dir / "bad.bin").string();
 
   expect_input_error((dir / "missing.bin").string(), "cannot open");

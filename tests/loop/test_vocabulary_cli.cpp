@@ -18,7 +18,7 @@ TEST(VocabularyCli, TrainsOnEurocImagesBitIdentically) {
   EXPECT_NE(a.output.find("from 5 images"), std::string::npos) << a.output;
   const test::CliResult b = test::run_cli(args + (dir / "b.voc").string());
   ASSERT_EQ(b.exit_code, 0) << b.output;
-  EXPECT_EQ(test::read_bytes(dir / "a.voc"), test::read_bytes(dir / "b.voc"));
+  EXPECT_EQ(test::read_file_bytes(dir / "a.voc"), test::read_file_bytes(dir / "b.voc"));
   const Vocabulary v = Vocabulary::load((dir / "a.voc").string());
   EXPECT_EQ(v.branching(), 8);
   EXPECT_EQ(v.levels(), 2);

@@ -4,23 +4,16 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
-#include <sstream>
 
 #include "io/cloud_io.h"
 #include "io/trajectory_io.h"
 #include "simulated_highbay.h"
+#include "test_util.h"
 
 namespace vilslam {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string read_all(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 TEST(MapCli, RerunsAreByteIdentical) {
   const std::string& data = test::highbay_preview();
@@ -34,9 +27,9 @@ TEST(MapCli, RerunsAreByteIdentical) {
   const test::CliResult b =
       test::run_cli("map " + data + " --poses " + poses + " --out " + (dir / "b.ply").string() + " --pcd");
   ASSERT_EQ(b.exit_code, 0) << b.output;
-  const std::string bytes = read_all(dir / "a.ply");
+  const std::string bytes = test::read_file_bytes(dir / "a.ply");
   EXPECT_GT(bytes.size(), 100000u);
-  EXPECT_EQ(bytes, read_all(dir / "b.ply"));
+  EXPECT_EQ(bytes, test::read_file_bytes(dir / "b.ply"));
   EXPECT_EQ(read_cloud((dir / "b.pcd").string()).points, read_cloud((dir / "b.ply").string()).points);
 
   const test::CliResult coarse = test::run_cli("map " + data + " --poses " + poses + " --out " +

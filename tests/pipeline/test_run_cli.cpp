@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <fstream>
-#include <sstream>
 #include <vector>
 
 #include "eval/trajectory_eval.h"
@@ -16,13 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_all(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 // Runs a mode twice into <mode>_a/ and <mode>_b/ and expects identical files (timings differ by nature).
 void expect_deterministic(const std::string& mode, const std::string& dataset, const fs::path& dir,
                           const std::vector<std::string>& files) {
@@ -31,16 +23,16 @@ void expect_deterministic(const std::string& mode, const std::string& dataset, c
     ASSERT_EQ(r.exit_code, 0) << r.output;
   }
   for (const std::string& file : files) {
-    const std::string a = read_all(dir / (mode + "_a") / file);
+    const std::string a = test::read_file_bytes(dir / (mode + "_a") / file);
     EXPECT_FALSE(a.empty()) << file;
-    EXPECT_EQ(a, read_all(dir / (mode + "_b") / file)) << file;
+    EXPECT_EQ(a, test::read_file_bytes(dir / (mode + "_b") / file)) << file;
   }
   EXPECT_TRUE(fs::exists(dir / (mode + "_a") / "timings.json"));
   EXPECT_FALSE(fs::exists(dir / (mode + "_a.partial")));
 }
 
 std::size_t count_lines(const fs::path& path) {
-  const std::string text = read_all(path);
+  const std::string text = test::read_file_bytes(path);
   return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
 }
 
@@ -139,17 +131,17 @@ TEST_F(SimulatedHighbay, ConfigChangesTheRunAndItsCopyRepeatsIt) {
   run("default", "");
   std::ofstream(dir / "tuned.yaml") << "frontend:\n  max_corners: 120\nvio:\n  smoother:\n    window_size: 4\n";
   run("tuned", " --config " + (dir / "tuned.yaml").string());
-  const std::string tuned_config = read_all(dir / "tuned" / "config.yaml");
+  const std::string tuned_config = test::read_file_bytes(dir / "tuned" / "config.yaml");
   EXPECT_NE(tuned_config.find("window_size: 4"), std::string::npos) << tuned_config;
   EXPECT_NE(tuned_config.find("max_corners: 120"), std::string::npos) << tuned_config;
-  EXPECT_NE(read_all(dir / "tuned" / "vio_camera.tum"), read_all(dir / "default" / "vio_camera.tum"));
+  EXPECT_NE(test::read_file_bytes(dir / "tuned" / "vio_camera.tum"), test::read_file_bytes(dir / "default" / "vio_camera.tum"));
   // Fewer corners per extraction (120 instead of 600): fewer stereo matches (measured: 135 instead of 352).
-  EXPECT_LT(json_number(read_all(dir / "tuned" / "timings.json"), "matches_max"),
-            0.6 * json_number(read_all(dir / "default" / "timings.json"), "matches_max"));
+  EXPECT_LT(json_number(test::read_file_bytes(dir / "tuned" / "timings.json"), "matches_max"),
+            0.6 * json_number(test::read_file_bytes(dir / "default" / "timings.json"), "matches_max"));
   // The run's config.yaml holds every key: given back, it repeats the run bit for bit.
   run("repeat", " --config " + (dir / "tuned" / "config.yaml").string());
-  EXPECT_EQ(read_all(dir / "repeat" / "vio_camera.tum"), read_all(dir / "tuned" / "vio_camera.tum"));
-  EXPECT_EQ(read_all(dir / "repeat" / "config.yaml"), tuned_config);
+  EXPECT_EQ(test::read_file_bytes(dir / "repeat" / "vio_camera.tum"), test::read_file_bytes(dir / "tuned" / "vio_camera.tum"));
+  EXPECT_EQ(test::read_file_bytes(dir / "repeat" / "config.yaml"), tuned_config);
 }
 
 TEST(RunCli, BadConfigExitsTwoWithoutOutput) {
