@@ -5,23 +5,11 @@
 #include <random>
 
 #include "common/error.h"
+#include "euroc_camera.h"
 #include "frontend/camera_model.h"
 
 namespace vilslam {
 namespace {
-
-CameraIntrinsics euroc_cam0() {
-  CameraIntrinsics cam;
-  cam.width_px = 752;
-  cam.height_px = 480;
-  cam.fx = 458.654;
-  cam.fy = 457.296;
-  cam.cx = 367.215;
-  cam.cy = 248.375;
-  cam.distortion = DistortionModel::kRadTan;
-  cam.distortion_coeffs = {-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05};
-  return cam;
-}
 
 // TUM-VI-like fisheye (Kalibr equidistant).
 CameraIntrinsics fisheye_cam() {
@@ -70,7 +58,7 @@ std::vector<Vec3> random_points_in_view(const CameraModel& model, int count, uns
 }
 
 TEST(CameraModel, RadTanUndistortMatchesOpenCv) {
-  const CameraIntrinsics cam = euroc_cam0();
+  const CameraIntrinsics cam = test::euroc_cam0();
   const CameraModel model(cam);
   const std::vector<cv::Point2d> px = pixel_grid(cam);
   std::vector<cv::Point2d> xy_cv;
@@ -85,7 +73,7 @@ TEST(CameraModel, RadTanUndistortMatchesOpenCv) {
 }
 
 TEST(CameraModel, RadTanProjectMatchesOpenCv) {
-  const CameraIntrinsics cam = euroc_cam0();
+  const CameraIntrinsics cam = test::euroc_cam0();
   const CameraModel model(cam);
   const std::vector<Vec3> points = random_points_in_view(model, 300, 3);
   std::vector<cv::Point3d> object;
@@ -124,7 +112,7 @@ TEST(CameraModel, EquidistantMatchesOpenCvFisheye) {
 }
 
 TEST(CameraModel, PixelRoundTripBothModels) {
-  for (const CameraIntrinsics& cam : {euroc_cam0(), fisheye_cam()}) {
+  for (const CameraIntrinsics& cam : {test::euroc_cam0(), fisheye_cam()}) {
     const CameraModel model(cam);
     for (const cv::Point2d& p : pixel_grid(cam)) {
       const Eigen::Vector2d px(p.x, p.y);
@@ -134,7 +122,7 @@ TEST(CameraModel, PixelRoundTripBothModels) {
 }
 
 TEST(CameraModel, ProjectionJacobianMatchesNumeric) {
-  for (const CameraIntrinsics& cam : {euroc_cam0(), fisheye_cam()}) {
+  for (const CameraIntrinsics& cam : {test::euroc_cam0(), fisheye_cam()}) {
     const CameraModel model(cam);
     for (const Vec3& p : random_points_in_view(model, 50, 5)) {
       Eigen::Vector2d px;
@@ -152,10 +140,10 @@ TEST(CameraModel, ProjectionJacobianMatchesNumeric) {
 }
 
 TEST(CameraModel, RejectsBehindCameraAndBadCoefficients) {
-  const CameraModel model(euroc_cam0());
+  const CameraModel model(test::euroc_cam0());
   Eigen::Vector2d px;
   EXPECT_FALSE(model.project(Vec3(0.1, 0.2, -1), &px));
-  CameraIntrinsics bad = euroc_cam0();
+  CameraIntrinsics bad = test::euroc_cam0();
   bad.distortion_coeffs.pop_back();
   EXPECT_THROW(CameraModel{bad}, InputError);
 }

@@ -5,22 +5,17 @@
 
 #include "common/error.h"
 #include "sim/camera_rays.h"
+#include "euroc_camera.h"
 
 namespace vilslam::sim {
 namespace {
 
+// EuRoC's cam0 with the given distortion model (equidistant: TUM-VI-like coefficients).
 CameraIntrinsics euroc_like(DistortionModel model) {
-  CameraIntrinsics c;
-  c.width_px = 752;
-  c.height_px = 480;
-  c.fx = 458.654;
-  c.fy = 457.296;
-  c.cx = 367.215;
-  c.cy = 248.375;
+  CameraIntrinsics c = test::euroc_cam0();
+  if (model == DistortionModel::kRadTan) return c;
   c.distortion = model;
-  c.distortion_coeffs = model == DistortionModel::kRadTan
-                            ? std::vector<double>{-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05}
-                            : std::vector<double>{-0.0111, 0.0342, -0.0454, 0.0186};
+  c.distortion_coeffs = {-0.0111, 0.0342, -0.0454, 0.0186};
   return c;
 }
 

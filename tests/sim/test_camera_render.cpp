@@ -12,6 +12,7 @@
 #include "sim/camera_render.h"
 #include "sim/scenario_figures.h"
 #include "sim/sim_config.h"
+#include "euroc_camera.h"
 
 namespace vilslam::sim {
 namespace {
@@ -19,17 +20,6 @@ namespace {
 const World& highbay() {
   static const World world = World::generate(Scenario::kHighbay, 3);
   return world;
-}
-
-CameraIntrinsics euroc_radtan() {
-  CameraIntrinsics c = default_camera();
-  c.fx = 458.654;
-  c.fy = 457.296;
-  c.cx = 367.215;
-  c.cy = 248.375;
-  c.distortion = DistortionModel::kRadTan;
-  c.distortion_coeffs = {-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05};
-  return c;
 }
 
 RenderOptions noiseless() {
@@ -53,7 +43,7 @@ std::vector<cv::Point2d> opencv_undistort(const CameraIntrinsics& c, const std::
 
 TEST(CameraRender, DepthMatchesRaysOfTheCalibration) {
   const World& world = highbay();
-  const CameraIntrinsics cam = euroc_radtan();
+  const CameraIntrinsics cam = test::euroc_cam0();
   const SE3 T_W_C = route_camera_pose(world.route_W(), 0);
   cv::Mat depth;
   render_image(world, cam, fixed(T_W_C), 0, noiseless(), &depth);
@@ -98,7 +88,7 @@ std::vector<cv::Point2d> patch_shifts(const cv::Mat& a, const cv::Mat& b) {
 
 TEST(CameraRender, DistortedImageContentLandsWhereTheCalibrationProjectsIt) {
   const World& world = highbay();
-  const CameraIntrinsics distorted = euroc_radtan();
+  const CameraIntrinsics distorted = test::euroc_cam0();
   // Reference: an undistorted pinhole camera with a wider field of view at the same pose.
   CameraIntrinsics pinhole = default_camera();
   pinhole.width_px = 1100;
