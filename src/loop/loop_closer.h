@@ -1,0 +1,101 @@
+#pragma once
+// Loop detection and loop constraints (paper, "Lidar enhanced loop closure"): each new key frame queries
+// the BoW database of older key images (only those older than a time threshold), candidates are verified
+// by descriptor matching against the left key image, a loop constraint is estimated by EPnP in RANSAC on
+// the candidate's stereo-triangulated points and refined by ICP of the current key scan's sparse features
+// against the candidate's key scan (or a submap of key scans around it). A loop is accepted only when the
+// ICP result is well constrained and agrees with EPnP and with the odometry (repeated structure guard).
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/lie.h"
+#include "common/yaml_config.h"
+#include "loop/bow_database.h"
+#include "loop/key_frame.h"
+#include "loop/vocabulary.h"
+
+namespace vilslam::loop {
+
+struct LoopClosureConfig {
+  bool enabled = true;
+  KeyFramePolicy key_frames;
+  // Detection.
+  double min_time_gap_s = 30.0;        // paper's time threshold: candidates at least this much older
+  int max_bow_candidates = 3;          // best BoW results verified per query
+  double min_bow_score = 0.0;          // absolute floor of the BoW score
+  int min_descriptor_matches = 40;     // left key image vs candidate (ratio test, mutual)
+  // EPnP in RANSAC on the candidate's 3D points and the query's left keypoints.
+  int min_pnp_inliers = 25;
+  double pnp_reprojection_px = 3.0;
+  int pnp_ransac_iterations = 200;
+  // ICP of the query key scan against the candidate's (paper) or a submap around it (beyond the paper).
+  int submap_half_width = 0;           // key scans on each side of the candidate; 0 = scan to scan
+  double icp_min_inlier_fraction = 0.5;
+  double icp_max_rms_m = 0.1;
+  double icp_min_eigenvalue_per_match = 0.03;  // no degenerate direction (lidar/degeneracy.h)
+  // Consistency: EPnP vs ICP, and the loop vs the odometry's prediction of the same relative pose.
+  double max_epnp_icp_translation_m = 0.3;
+  double max_epnp_icp_rotation_rad = 0.0524;   // 3 degrees
+  double max_odometry_disagreement_m = 2.0;    // plus the fraction below of the path between the two
+  double max_odometry_disagreement_per_m = 0.05;
+  // Loop factor noise for the global pose graph.
+  double loop_sigma_m = 0.02;
+  double loop_sigma_rad = 0.002;
+};
+
+// The `loop_closure:` section of a run config, bound to c's fields; validate after reading.
+YamlFields loop_closure_yaml_fields(LoopClosureConfig& c);
+// Throws InputError(source, ...) when a value is out of range.
+void validate_loop_closure_config(const LoopClosureConfig& c, const std::string& source);
+
+// One examined candidate: what each stage measured and the stage that rejected it ("" when accepted).
+// Stages in order: "bow_score", "descriptor_matches", "pnp_inliers", "icp_fitness", "icp_degenerate",
+// "epnp_icp_disagree", "odometry_disagree".
+struct LoopCandidateRecord {
+  std::size_t query_key_frame = 0;
+  std::size_t candidate_key_frame = 0;
+  std::size_t query_pose_index = 0;      // "to" of the loop factor (the current scan v)
+  std::size_t candidate_pose_index = 0;  // "from" of the loop factor (the old key scan u)
+  TimeNs query_t_ns = 0;                 // key scans' end times (their LiDAR pose times)
+  TimeNs candidate_t_ns = 0;
+  double bow_score = 0.0;
+  int descriptor_matches = 0;
+  int pnp_inliers = 0;
+  double icp_rms_m = 0.0;
+  double icp_inlier_fraction = 0.0;
+  double icp_min_eigenvalue_per_match = 0.0;
+  double epnp_icp_translation_m = 0.0;
+  double epnp_icp_rotation_rad = 0.0;
+  double odometry_disagreement_m = 0.0;
+  SE3 T_Lu_Lv_epnp;                      // EPnP alone, moved into the key scans' frames
+  SE3 T_Lu_Lv;                           // EPnP + ICP: the loop constraint (u = candidate, v = query)
+  Mat6 information = Mat6::Identity();   // of T_Lu_Lv, [rho; phi]
+  std::string rejected_by;
+
+  bool accepted() const { return rejected_by.empty(); }
+};
+
+class LoopCloser {
+ public:
+  LoopCloser(const LoopClosureConfig& config, std::shared_ptr<const Vocabulary> vocabulary);
+
+  // Verifies the BoW candidates of key_frame (its id is set here to the next position), then stores it in
+  // the database and the key frame list. T_W_L(pose_index) is the current best estimate of any earlier
+  // graph pose (for the submap and the odometry check). Returns every examined candidate, in BoW order.
+  std::vector<LoopCandidateRecord> add_and_detect(KeyFrame key_frame,
+                                                  const std::function<SE3(std::size_t)>& T_W_L_of_pose);
+
+  const std::vector<KeyFrame>& key_frames() const { return key_frames_; }
+  const LoopClosureConfig& config() const { return config_; }
+
+ private:
+  LoopClosureConfig config_;
+  std::shared_ptr<const Vocabulary> vocabulary_;
+  BowDatabase database_;
+  std::vector<KeyFrame> key_frames_;
+};
+
+}  // namespace vilslam::loop
