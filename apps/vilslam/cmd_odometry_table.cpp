@@ -91,12 +91,14 @@ ModeRun run_mode(const fs::path& data, RunMode mode, const fs::path& out) {
   return run;
 }
 
+// The LiDAR odometry: with loop closure (vil) its composed motion, lidar.tum, not the corrected poses.
 eval::RunTrajectory lidar_poses(const ModeRun& run, std::size_t* degenerate, std::size_t* sweeps) {
   eval::RunTrajectory traj{{}, run.failure};
   for (const lidar::LidarMappingResult& m : run.result.lidar) {
     traj.poses.push_back({m.t_ns, m.T_W_L});
     *degenerate += m.degenerate ? 1 : 0;
   }
+  if (run.result.loop) traj.poses = run.result.loop->lidar_odometry;
   *sweeps = run.result.lidar.size();
   return traj;
 }

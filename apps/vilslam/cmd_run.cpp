@@ -39,6 +39,15 @@ void print_summary(const OfflineRunResult& r) {
   const TimingSummary li = summarize_timings(lidar_ms);
   std::printf("LiDAR sweeps mapped %zu (degenerate %d, unmapped %zu)\n", r.lidar.size(), degenerate, r.unmapped_scans);
   std::printf("lidar mapping ms: median %.2f p95 %.2f max %.2f\n", li.median_ms, li.p95_ms, li.max_ms);
+  if (!r.loop) return;
+  std::size_t accepted = 0;
+  for (const loop::LoopCandidateRecord& c : r.loop->candidates) accepted += c.accepted() ? 1 : 0;
+  const TimingSummary de = summarize_timings(r.loop->detection_ms);
+  const TimingSummary co = summarize_timings(r.loop->correction_ms);
+  std::printf("key frames %zu, loop candidates %zu, loops accepted %zu\n", r.loop->key_frames,
+              r.loop->candidates.size(), accepted);
+  std::printf("loop detection + constraints ms: median %.2f p95 %.2f max %.2f; correction ms: median %.2f max %.2f\n",
+              de.median_ms, de.p95_ms, de.max_ms, co.median_ms, co.max_ms);
 }
 
 vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and write trajectories and timings",

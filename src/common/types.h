@@ -56,4 +56,8 @@ struct GroundTruthState {
 
 using Trajectory = std::vector<TimedPose>;
 
+// The pose of a time-sorted trajectory at t_ns, interpolated between its neighbours (common/lie.h
+// interpolate), held at the first or last pose outside the trajectory's span. Needs a non-empty trajectory.
+SE3 pose_at(const Trajectory& poses, TimeNs t_ns);
+
 }  // namespace vilslam

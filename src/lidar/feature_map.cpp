@@ -16,4 +16,16 @@ void FeatureMap::insert(const FeatureScan& features_L, const SE3& T_W_L) {
   surfaces.remove_far(T_W_L.translation());
 }
 
+FeatureMap build_feature_map(const FeatureMapConfig& config, const std::vector<PosedFeatureScan>& scans,
+                             const Vec3& sensor_W) {
+  FeatureMap map(config);
+  for (const PosedFeatureScan& scan : scans) {
+    map.edges.insert(transform_points(scan.features_L->edges, scan.T_W_L));
+    map.surfaces.insert(transform_points(scan.features_L->surfaces, scan.T_W_L));
+  }
+  map.edges.remove_far(sensor_W);
+  map.surfaces.remove_far(sensor_W);
+  return map;
+}
+
 }  // namespace vilslam::lidar

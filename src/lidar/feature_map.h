@@ -21,6 +21,17 @@ struct FeatureMap {
   VoxelMap surfaces;
 };
 
+// A feature scan with the pose it is placed at.
+struct PosedFeatureScan {
+  const FeatureScan* features_L = nullptr;
+  SE3 T_W_L;
+};
+
+// A map of several scans at their poses (in the given order), then limited to config's max_distance_m
+// around sensor_W: the map that loop correction rebuilds from key scans (paper, "Re-localization").
+FeatureMap build_feature_map(const FeatureMapConfig& config, const std::vector<PosedFeatureScan>& scans,
+                             const Vec3& sensor_W);
+
 // The feature points moved into the world frame by T_W_L.
 std::vector<Vec3> transform_points(const std::vector<FeaturePoint>& points_L, const SE3& T_W_L);
 

@@ -1,6 +1,7 @@
 #include "lidar/lidar_mapper.h"
 
 #include <chrono>
+#include <stdexcept>
 
 #include "common/error.h"
 #include "lidar/dewarp.h"
@@ -61,6 +62,12 @@ RegistrationResult LidarMapper::reregister_lidar_only(const FeatureScan& raw, Ti
   return register_scan(features, map_, T_W_L, config_.lidar.registration);
 }
 
+void LidarMapper::relocalize(const SE3& T_W_L_last, const std::vector<PosedFeatureScan>& scans) {
+  if (!previous_) throw std::logic_error("LidarMapper::relocalize before the first sweep");
+  previous_->T_W_L = T_W_L_last;
+  map_ = build_feature_map(config_.lidar.map, scans, T_W_L_last.translation());
+}
+
 LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior) {
   const auto start = std::chrono::steady_clock::now();
   if (scan.points.empty()) throw InputError("lidar scan", "empty scan at t_ns " + std::to_string(scan.t_ns));
@@ -109,6 +116,7 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
   out.num_edge_features = static_cast<int>(features.edges.size());
   out.num_surface_features = static_cast<int>(features.surfaces.size());
   map_.insert(features, out.T_W_L);
+  last_features_ = std::move(features);
 
   Previous next;
   next.end_t_ns = end_t_ns;

@@ -47,6 +47,13 @@ class LidarMapper {
   LidarMappingResult process(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior);
 
   const FeatureMap& map() const { return map_; }
+  // The last sweep's features as registered: dewarped to its end, in its LiDAR frame.
+  const FeatureScan& last_features() const { return last_features_; }
+
+  // Loop correction (paper, "Re-localization"): the last pose becomes T_W_L_last and the feature map is
+  // rebuilt from the scans at their corrected poses, so the next sweeps register against the corrected,
+  // revisited map. Motion priors stay relative, so mapping resumes in the corrected frame.
+  void relocalize(const SE3& T_W_L_last, const std::vector<PosedFeatureScan>& scans);
 
  private:
   struct Previous {
@@ -67,7 +74,8 @@ class LidarMapper {
   SE3 T_I_L_;
   FeatureMap map_;
   std::optional<Previous> previous_;
-  std::optional<FeatureScan> first_raw_;  // LiDAR-only: the first sweep's features until its motion is known
+  std::optional<FeatureScan> first_raw_;
+  FeatureScan last_features_;  // LiDAR-only: the first sweep's features until its motion is known
 };
 
 }  // namespace vilslam::lidar

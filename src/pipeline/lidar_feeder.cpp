@@ -1,17 +1,17 @@
 #include "pipeline/lidar_feeder.h"
 
-#include <algorithm>
-
 namespace vilslam {
 
 LidarFeeder::LidarFeeder(const lidar::LidarMapperConfig& config, const RigCalibration& calib,
-                         const Trajectory* imu_poses, std::vector<lidar::LidarMappingResult>* results)
-    : mapper_(config, calib.T_I_L), offset_ns_(calib.lidar_time_offset_ns), imu_poses_(imu_poses), results_(results) {}
+                         const Trajectory* imu_poses, std::vector<lidar::LidarMappingResult>* results,
+                         LoopClosureModule* loop)
+    : mapper_(config, calib.T_I_L), offset_ns_(calib.lidar_time_offset_ns), imu_poses_(imu_poses), results_(results),
+      loop_(loop) {}
 
 void LidarFeeder::scan(LidarScan scan) {
   scan.t_ns += offset_ns_;
   if (!imu_poses_) {
-    results_->push_back(mapper_.process(scan, {}));
+    map(scan, {});
     return;
   }
   waiting_.push_back(std::move(scan));
@@ -24,21 +24,18 @@ void LidarFeeder::poses_advanced() {
     if (scan.t_ns < imu_poses_->front().t_ns) {
       ++unmapped_;  // the VIO was not initialized yet at the sweep's start
     } else {
-      results_->push_back(mapper_.process(scan, [this](TimeNs t_ns) { return interpolated_T_W_I(t_ns); }));
+      map(scan, [this](TimeNs t_ns) { return pose_at(*imu_poses_, t_ns); });
     }
     waiting_.pop_front();
   }
 }
 
-SE3 LidarFeeder::interpolated_T_W_I(TimeNs t_ns) const {
-  const Trajectory& poses = *imu_poses_;
-  const auto after = std::lower_bound(poses.begin(), poses.end(), t_ns,
-                                      [](const TimedPose& p, TimeNs t) { return p.t_ns < t; });
-  if (after == poses.begin()) return poses.front().T_W_B;
-  if (after == poses.end()) return poses.back().T_W_B;
-  const TimedPose& before = *(after - 1);
-  const double alpha = static_cast<double>(t_ns - before.t_ns) / static_cast<double>(after->t_ns - before.t_ns);
-  return interpolate(before.T_W_B, after->T_W_B, alpha);
+void LidarFeeder::map(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior) {
+  results_->push_back(mapper_.process(scan, T_W_I_prior));
+  if (!loop_) return;
+  if (const auto correction = loop_->scan_mapped(results_->back(), mapper_.last_features())) {
+    mapper_.relocalize(correction->T_W_L_last, correction->key_scans);
+  }
 }
 
 }  // namespace vilslam

@@ -1,7 +1,8 @@
 #pragma once
 // Feeds LiDAR sweeps to the mapper. With the VIO (vil mode) a sweep waits until the IMU-rate VIO poses
 // reach its end, then maps with those poses interpolated as the motion prior (paper, "Lidar mapping");
-// without it (lidar-only) each sweep is mapped at once with the constant-velocity model.
+// without it (lidar-only) each sweep is mapped at once with the constant-velocity model. With a loop
+// closure module every mapped sweep goes to it, and its map corrections go back to the mapper.
 #include <cstddef>
 #include <deque>
 #include <vector>
@@ -9,14 +10,16 @@
 #include "common/calibration.h"
 #include "common/types.h"
 #include "lidar/lidar_mapper.h"
+#include "pipeline/loop_closure_module.h"
 
 namespace vilslam {
 
 class LidarFeeder {
  public:
   // imu_poses: the VIO's IMU-rate poses as they grow (vil), or nullptr for LiDAR-only mapping.
+  // loop: the loop closure module, or nullptr.
   LidarFeeder(const lidar::LidarMapperConfig& config, const RigCalibration& calib, const Trajectory* imu_poses,
-              std::vector<lidar::LidarMappingResult>* results);
+              std::vector<lidar::LidarMappingResult>* results, LoopClosureModule* loop = nullptr);
 
   void scan(LidarScan scan);
   // Maps the waiting sweeps that the IMU-rate poses now cover.
@@ -25,12 +28,13 @@ class LidarFeeder {
   std::size_t unmapped_scans() const { return unmapped_ + waiting_.size(); }
 
  private:
-  SE3 interpolated_T_W_I(TimeNs t_ns) const;
+  void map(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior);
 
   lidar::LidarMapper mapper_;
   TimeNs offset_ns_;
   const Trajectory* imu_poses_;
   std::vector<lidar::LidarMappingResult>* results_;
+  LoopClosureModule* loop_;
   std::deque<LidarScan> waiting_;
   std::size_t unmapped_ = 0;
 };

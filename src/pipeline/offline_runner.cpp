@@ -80,6 +80,8 @@ void check_mode_fits(const DatasetReader& reader, RunMode mode) {
 
 }  // namespace
 
+std::string default_vocabulary_path() { return VILSLAM_DEFAULT_VOCABULARY; }
+
 RunMode parse_run_mode(const std::string& name) {
   if (name == "vio") return RunMode::kVio;
   if (name == "vil") return RunMode::kVil;
@@ -102,10 +104,20 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
   OfflineRunResult result;
   std::optional<VioFeeder> vio;
   if (config.mode != RunMode::kLidarOnly) vio.emplace(reader.calibration(), config, &result);
+  std::optional<LoopClosureModule> loop;
+  if (config.mode == RunMode::kVil) {
+    std::shared_ptr<const Vocabulary> vocabulary;
+    if (config.loop.enabled) vocabulary = std::make_shared<const Vocabulary>(Vocabulary::load(
+          config.vocabulary == "default" ? default_vocabulary_path() : config.vocabulary));
+    loop.emplace(config.loop, config.graph, vocabulary, reader.calibration(), config.frontend, &result.imu_poses,
+                 config.lidar.lidar.map.edges.max_distance_m);
+  }
   std::optional<LidarFeeder> lidar;
   if (config.mode != RunMode::kVio) {
-    lidar.emplace(config.lidar, reader.calibration(), vio ? &result.imu_poses : nullptr, &result.lidar);
+    lidar.emplace(config.lidar, reader.calibration(), vio ? &result.imu_poses : nullptr, &result.lidar,
+                  loop ? &*loop : nullptr);
   }
+  const TimeNs cam_offset_ns = reader.calibration().cam_time_offset_ns;
   reader.rewind();
   // The IMU stream may run on long after the last image (EuRoC slices): stop once every frame is in.
   const auto all_frames_in = [&] { return vio && result.matches_per_frame.size() >= summary.stereo_frames && vio->idle(); };
@@ -118,6 +130,11 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
             if (vio && lidar) lidar->poses_advanced();
           }
           if constexpr (std::is_same_v<T, StereoFrame>) {
+            if (loop) {
+              StereoFrame on_imu_clock = data;  // shares the images
+              on_imu_clock.t_ns += cam_offset_ns;
+              loop->stereo(on_imu_clock);
+            }
             if (vio) vio->stereo(std::move(data));
           }
           if constexpr (std::is_same_v<T, LidarScan>) {
@@ -132,6 +149,7 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
     lidar->poses_advanced();
     result.unmapped_scans = lidar->unmapped_scans();
   }
+  if (loop) result.loop = loop->finish();
   return result;
 }
 

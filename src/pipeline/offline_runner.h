@@ -4,6 +4,7 @@
 // to the mapper with the VIO's IMU-rate poses as motion prior (vil) or without it (lidar-only).
 // Collects the camera-rate optimized states, the IMU-rate propagated poses, the LiDAR poses and
 // per-module timings.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,9 @@
 #include "frontend/frontend_config.h"
 #include "io/dataset.h"
 #include "lidar/lidar_mapper.h"
+#include "loop/global_pose_graph.h"
+#include "loop/loop_closer.h"
+#include "pipeline/loop_closure_module.h"
 #include "vio/vio.h"
 
 namespace vilslam {
@@ -21,11 +25,17 @@ enum class RunMode { kVio, kVil, kLidarOnly };
 RunMode parse_run_mode(const std::string& name);
 std::string run_mode_name(RunMode mode);
 
+// The vocabulary shipped in config/ (docs/loop.md).
+std::string default_vocabulary_path();
+
 struct OfflineRunConfig {
   RunMode mode = RunMode::kVio;
   FrontendConfig frontend;
   VioConfig vio;
   lidar::LidarMapperConfig lidar;
+  loop::LoopClosureConfig loop;         // vil mode only (it needs key images)
+  loop::GlobalPoseGraphConfig graph;
+  std::string vocabulary = "default";   // a vocabulary file, or "default": default_vocabulary_path()
 };
 
 struct OfflineRunResult {
@@ -37,6 +47,7 @@ struct OfflineRunResult {
   std::size_t imu_samples = 0;
   std::vector<lidar::LidarMappingResult> lidar;  // one per mapped sweep
   std::size_t unmapped_scans = 0;  // vil: sweeps no VIO pose covered
+  std::optional<LoopClosureOutput> loop;  // vil: odometry, loop-corrected poses, loop candidates
 };
 
 // Runs the whole sequence. Throws InputError for bad input, including a mode the dataset cannot serve

@@ -6,9 +6,28 @@
 namespace vilslam {
 namespace {
 
+YamlFields graph_yaml_fields(loop::GlobalPoseGraphConfig& c) {
+  return {yaml_value("odometry_sigma_m", c.odometry_sigma_m), yaml_value("odometry_sigma_rad", c.odometry_sigma_rad),
+          yaml_value("loop_loss_scale", c.loop_loss_scale), yaml_value("max_iterations", c.max_iterations)};
+}
+
 YamlFields run_yaml_fields(OfflineRunConfig& c) {
+  YamlFields loop_fields = loop::loop_closure_yaml_fields(c.loop);
+  loop_fields.push_back(yaml_value("vocabulary", c.vocabulary));
+  loop_fields.push_back(yaml_section("graph", graph_yaml_fields(c.graph)));
   return {yaml_section("frontend", frontend_yaml_fields(c.frontend)), yaml_section("vio", vio_yaml_fields(c.vio)),
-          yaml_section("lidar_mapper", lidar::lidar_mapper_yaml_fields(c.lidar))};
+          yaml_section("lidar_mapper", lidar::lidar_mapper_yaml_fields(c.lidar)),
+          yaml_section("loop_closure", std::move(loop_fields))};
+}
+
+void validate_graph_config(const loop::GlobalPoseGraphConfig& c, const std::string& path) {
+  const auto positive = [&](double v, const char* key) {
+    if (!(v > 0)) throw InputError(path, std::string("'loop_closure.graph.") + key + "' must be positive");
+  };
+  positive(c.odometry_sigma_m, "odometry_sigma_m");
+  positive(c.odometry_sigma_rad, "odometry_sigma_rad");
+  positive(c.loop_loss_scale, "loop_loss_scale");
+  if (c.max_iterations < 1) throw InputError(path, "'loop_closure.graph.max_iterations' must be at least 1");
 }
 
 }  // namespace
@@ -19,6 +38,8 @@ OfflineRunConfig load_run_config(const std::string& path) {
   validate_frontend_config(c.frontend, path);
   validate_vio_config(c.vio, path);
   lidar::validate_lidar_config(c.lidar.lidar, path);
+  loop::validate_loop_closure_config(c.loop, path);
+  validate_graph_config(c.graph, path);
   return c;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // One YAML for every module of `vilslam run` (docs/pipeline.md): optional top-level sections
-// `frontend:` (frontend_yaml_fields), `vio:` (vio_yaml_fields) and `lidar_mapper:`
-// (lidar_mapper_yaml_fields). A missing section or key keeps the default; config/run_default.yaml lists
+// `frontend:` (frontend_yaml_fields), `vio:` (vio_yaml_fields), `lidar_mapper:`
+// (lidar_mapper_yaml_fields) and `loop_closure:` (loop_closure_yaml_fields plus `vocabulary` and `graph`). A missing section or key keeps the default; config/run_default.yaml lists
 // every key with its default.
 #include <string>
 

@@ -7,6 +7,7 @@
 
 #include "common/json_writer.h"
 #include "io/trajectory_io.h"
+#include "loop/loop_constraints_io.h"
 #include "pipeline/run_config.h"
 #include "pipeline/timing_stats.h"
 
@@ -42,6 +43,16 @@ std::string timings_json(RunMode mode, const OfflineRunResult& r) {
   for (const lidar::LidarMappingResult& m : r.lidar) lidar_ms.push_back(m.time_ms);
   write_timing(json, "lidar_mapping", lidar_ms);
   json.key("lidar_unmapped_scans").value(static_cast<std::uint64_t>(r.unmapped_scans));
+  if (r.loop) {
+    json.key("key_frames").value(static_cast<std::uint64_t>(r.loop->key_frames));
+    json.key("loop_candidates").value(static_cast<std::uint64_t>(r.loop->candidates.size()));
+    const auto accepted = std::count_if(r.loop->candidates.begin(), r.loop->candidates.end(),
+                                        [](const loop::LoopCandidateRecord& c) { return c.accepted(); });
+    json.key("loops_accepted").value(static_cast<std::uint64_t>(accepted));
+    write_timing(json, "key_frame", r.loop->key_frame_ms);
+    write_timing(json, "loop_detection_and_constraints", r.loop->detection_ms);
+    write_timing(json, "loop_correction", r.loop->correction_ms);
+  }
   json.end_object();
   return json.str();
 }
@@ -72,9 +83,18 @@ void write_run_outputs(const std::string& out_dir, const OfflineRunConfig& confi
     write_trajectory((partial / "vio_imu.tum").string(), result.imu_poses, TrajectoryFormat::kTum);
   }
   if (mode != RunMode::kVio) {
-    Trajectory T_W_L;
-    for (const lidar::LidarMappingResult& m : result.lidar) T_W_L.push_back({m.t_ns, m.T_W_L});
-    write_trajectory((partial / "lidar.tum").string(), T_W_L, TrajectoryFormat::kTum);
+    if (result.loop) {
+      // With the loop closure module (vil): the odometry, the poses as published, the final graph.
+      write_trajectory((partial / "lidar.tum").string(), result.loop->lidar_odometry, TrajectoryFormat::kTum);
+      write_trajectory((partial / "lidar_global.tum").string(), result.loop->lidar_global, TrajectoryFormat::kTum);
+      write_trajectory((partial / "lidar_final.tum").string(), result.loop->lidar_final, TrajectoryFormat::kTum);
+      write_file_atomic((partial / "loops.csv").string(), loop::loops_csv(result.loop->candidates));
+      write_file_atomic((partial / "loop_candidates.csv").string(), loop::loop_candidates_csv(result.loop->candidates));
+    } else {
+      Trajectory T_W_L;
+      for (const lidar::LidarMappingResult& m : result.lidar) T_W_L.push_back({m.t_ns, m.T_W_L});
+      write_trajectory((partial / "lidar.tum").string(), T_W_L, TrajectoryFormat::kTum);
+    }
     write_file_atomic((partial / "degeneracy.csv").string(), degeneracy_csv(result.lidar));
   }
   write_file_atomic((partial / "timings.json").string(), timings_json(mode, result));

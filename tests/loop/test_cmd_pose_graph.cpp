@@ -66,7 +66,7 @@ TEST(CmdPoseGraph, BadInputExitsTwoWithoutOutput) {
       {"123," + good.substr(good.find(',') + 1), "loops.csv:4: time 123 ns is not a pose time"},
       {good.substr(0, good.find(',', good.find(',') + 1)) + ",nan,0,0,0,0,0,1\n", "loops.csv:4"},
       {good.substr(0, good.find(',', good.find(',') + 1)) + ",0,0,0,0,0,0.5,1\n", "loops.csv:4: quaternion is not unit"},
-      {good.substr(0, good.find(',', good.find(',') + 1)) + ",0,0,0,0,0,0,1,0.1\n", "loops.csv:4: expected 9 or 11"},
+      {good.substr(0, good.find(',', good.find(',') + 1)) + ",0,0,0,0,0,0,1,0.1\n", "loops.csv:4: expected 9, 11 or 27"},
   };
   for (const BadCase& c : bad_cases) {
     const Files f = write_inputs(s, c.row);

@@ -1,0 +1,118 @@
+#include "pipeline/loop_closure_module.h"
+
+#include <chrono>
+#include <cstdlib>
+#include <limits>
+
+namespace vilslam {
+namespace {
+
+double elapsed_ms(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+constexpr TimeNs kRecentFramesNs = 2'000'000'000;  // stereo pairs kept as key image candidates
+
+}  // namespace
+
+LoopClosureModule::LoopClosureModule(const loop::LoopClosureConfig& config,
+                                     const loop::GlobalPoseGraphConfig& graph_config,
+                                     std::shared_ptr<const Vocabulary> vocabulary, const RigCalibration& calib,
+                                     const FrontendConfig& frontend_config, const Trajectory* imu_poses,
+                                     double map_radius_m)
+    : config_(config), vocabulary_(std::move(vocabulary)), calib_(calib), rig_(make_stereo_rig(calib)),
+      frontend_config_(frontend_config), imu_poses_(imu_poses), map_radius_m_(map_radius_m), graph_(graph_config) {
+  if (config_.enabled) closer_.emplace(config_, vocabulary_);
+}
+
+void LoopClosureModule::stereo(const StereoFrame& frame) {
+  if (!closer_) return;
+  recent_frames_.push_back(frame);
+  while (recent_frames_.front().t_ns < frame.t_ns - kRecentFramesNs) recent_frames_.pop_front();
+}
+
+bool LoopClosureModule::make_key_frame(const lidar::LidarMappingResult& mapped, const lidar::FeatureScan& features_L,
+                                       std::size_t pose_index, loop::KeyFrame* key_frame) const {
+  // Paper: key images and key scans are associated by their timestamps.
+  const StereoFrame* nearest = nullptr;
+  TimeNs best_gap_ns = std::numeric_limits<TimeNs>::max();
+  for (const StereoFrame& f : recent_frames_) {
+    const TimeNs gap_ns = std::llabs(f.t_ns - mapped.t_ns);
+    if (gap_ns < best_gap_ns) best_gap_ns = gap_ns, nearest = &f;
+  }
+  if (!nearest || ns_to_s(best_gap_ns) > config_.key_frames.max_image_scan_gap_s) return false;
+  const Trajectory& poses = *imu_poses_;
+  if (poses.empty() || nearest->t_ns < poses.front().t_ns || nearest->t_ns > poses.back().t_ns) return false;
+  // The key image's camera in the key scan's frame, through the VIO motion between the two instants.
+  const SE3 T_W_L_scan = pose_at(poses, mapped.t_ns) * calib_.T_I_L;
+  const SE3 T_W_C0_image = pose_at(poses, nearest->t_ns) * calib_.T_I_C0;
+  key_frame->pose_index = pose_index;
+  key_frame->scan_t_ns = mapped.t_ns;
+  key_frame->T_L_C0 = T_W_L_scan.inverse() * T_W_C0_image;
+  key_frame->image = loop::make_key_image(*nearest, rig_, frontend_config_, *vocabulary_);
+  key_frame->features_L = features_L;
+  return true;
+}
+
+MapCorrection LoopClosureModule::correction_at(std::size_t pose_index) const {
+  MapCorrection c;
+  c.T_W_L_last = graph_.pose(pose_index);
+  for (const loop::KeyFrame& kf : closer_->key_frames()) {
+    const SE3& T_W_L = graph_.pose(kf.pose_index);
+    if ((T_W_L.translation() - c.T_W_L_last.translation()).norm() <= map_radius_m_) {
+      c.key_scans.push_back({&kf.features_L, T_W_L});
+    }
+  }
+  return c;
+}
+
+std::optional<MapCorrection> LoopClosureModule::scan_mapped(const lidar::LidarMappingResult& mapped,
+                                                            const lidar::FeatureScan& features_L) {
+  // lidar.tum: the mapper's motion composed, continuous across the corrections.
+  out_.lidar_odometry.push_back({mapped.t_ns, corrected_ ? T_odometry_mapper_ * mapped.T_W_L : mapped.T_W_L});
+  const std::size_t index = last_mapper_T_W_L_
+                                ? graph_.add_odometry(mapped.t_ns, last_mapper_T_W_L_->inverse() * mapped.T_W_L)
+                                : graph_.add_first_pose(mapped.t_ns, mapped.T_W_L);
+  last_mapper_T_W_L_ = mapped.T_W_L;
+  SE3 published = mapped.T_W_L;
+  std::optional<MapCorrection> correction;
+  const bool key = closer_ && (!last_key_index_ || loop::is_new_key_frame(graph_.pose(*last_key_index_),
+                                                                          graph_.pose(index), config_.key_frames));
+  loop::KeyFrame key_frame;
+  auto start = std::chrono::steady_clock::now();
+  if (key && make_key_frame(mapped, features_L, index, &key_frame)) {
+    out_.key_frame_ms.push_back(elapsed_ms(start));
+    last_key_index_ = index;
+    start = std::chrono::steady_clock::now();
+    const auto records = closer_->add_and_detect(std::move(key_frame), [this](std::size_t i) { return graph_.pose(i); });
+    out_.detection_ms.push_back(elapsed_ms(start));
+    bool loop_found = false;
+    for (const loop::LoopCandidateRecord& r : records) {
+      out_.candidates.push_back(r);
+      if (!r.accepted()) continue;
+      graph_.add_loop(r.candidate_pose_index, r.query_pose_index, r.T_Lu_Lv, r.information);
+      loop_found = true;
+    }
+    if (loop_found) {
+      start = std::chrono::steady_clock::now();
+      graph_.optimize();
+      correction = correction_at(index);
+      out_.correction_ms.push_back(elapsed_ms(start));
+      published = correction->T_W_L_last;
+      T_odometry_mapper_ = out_.lidar_odometry.back().T_W_B * published.inverse();
+      corrected_ = true;
+      last_mapper_T_W_L_ = published;
+    }
+  }
+  out_.lidar_global.push_back({mapped.t_ns, published});
+  return correction;
+}
+
+LoopClosureOutput LoopClosureModule::finish() {
+  out_.key_frames = closer_ ? closer_->key_frames().size() : 0;
+  out_.lidar_final = graph_.size() > 0 ? graph_.trajectory() : Trajectory{};
+  if (!corrected_) out_.lidar_final = out_.lidar_global;  // no loop: the odometry is final
+  return std::move(out_);
+}
+
+}  // namespace vilslam

@@ -1,0 +1,81 @@
+#pragma once
+// The loop closure module of the paper's diagram, wired into the offline pipeline: key scans are chosen
+// among the mapped sweeps (loop/key_frame.h policy) and associated by timestamp with the nearest stereo
+// pair (the key image); the loop closer detects loops and estimates EPnP + ICP constraints; the global pose
+// graph holds every LiDAR pose; an accepted loop re-optimizes it and returns a map correction to LiDAR
+// mapping (paper, "Re-localization"). In this synchronous offline mode the correction is applied before
+// the next sweep, so the paper's buffer of sweeps waiting for the correction is always empty.
+#include <cstddef>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "common/calibration.h"
+#include "common/types.h"
+#include "frontend/camera_model.h"
+#include "frontend/frontend_config.h"
+#include "lidar/feature_map.h"
+#include "lidar/lidar_mapper.h"
+#include "loop/global_pose_graph.h"
+#include "loop/loop_closer.h"
+
+namespace vilslam {
+
+struct LoopClosureOutput {
+  Trajectory lidar_odometry;  // the mapper's own motion, composed: lidar.tum
+  Trajectory lidar_global;    // each pose as published, with the corrections known then: lidar_global.tum
+  Trajectory lidar_final;     // the final optimized graph: lidar_final.tum
+  std::vector<loop::LoopCandidateRecord> candidates;  // every examined candidate, accepted or not
+  std::size_t key_frames = 0;
+  std::vector<double> key_frame_ms;   // key image extraction per key frame
+  std::vector<double> detection_ms;   // detection + constraints (LoopCloser::add_and_detect) per key frame
+  std::vector<double> correction_ms;  // graph optimization + map rebuild per accepted loop
+};
+
+// What LiDAR mapping must do after a loop: resume from T_W_L_last on a map rebuilt from the key scans.
+struct MapCorrection {
+  SE3 T_W_L_last;
+  std::vector<lidar::PosedFeatureScan> key_scans;  // point into the loop closer's key frames
+};
+
+class LoopClosureModule {
+ public:
+  // imu_poses: the VIO's IMU-rate poses (they give the motion between a key image and its key scan).
+  // With loop closure disabled it only records the odometry (lidar_global = lidar_final = lidar_odometry).
+  LoopClosureModule(const loop::LoopClosureConfig& config, const loop::GlobalPoseGraphConfig& graph_config,
+                    std::shared_ptr<const Vocabulary> vocabulary, const RigCalibration& calib,
+                    const FrontendConfig& frontend_config, const Trajectory* imu_poses, double map_radius_m);
+
+  // A stereo pair, its time already on the IMU clock. Kept for a short while as a key image candidate.
+  void stereo(const StereoFrame& frame);
+  // A sweep the mapper has just registered (features_L as the mapper registered them). Returns the
+  // correction the mapper must apply when a loop was accepted.
+  std::optional<MapCorrection> scan_mapped(const lidar::LidarMappingResult& mapped, const lidar::FeatureScan& features_L);
+
+  // Final optimization; fills lidar_final.
+  LoopClosureOutput finish();
+
+ private:
+  bool make_key_frame(const lidar::LidarMappingResult& mapped, const lidar::FeatureScan& features_L,
+                      std::size_t pose_index, loop::KeyFrame* key_frame) const;
+  MapCorrection correction_at(std::size_t pose_index) const;
+
+  loop::LoopClosureConfig config_;
+  std::shared_ptr<const Vocabulary> vocabulary_;
+  RigCalibration calib_;
+  StereoRig rig_;
+  FrontendConfig frontend_config_;
+  const Trajectory* imu_poses_;
+  double map_radius_m_;
+  std::optional<loop::LoopCloser> closer_;
+  loop::GlobalPoseGraph graph_;
+  std::deque<StereoFrame> recent_frames_;
+  std::optional<SE3> last_mapper_T_W_L_;   // the mapper's previous output (corrected after a loop)
+  SE3 T_odometry_mapper_;                  // lidar_odometry = T_odometry_mapper_ * mapper output
+  bool corrected_ = false;
+  std::optional<std::size_t> last_key_index_;  // graph index of the last key scan
+  LoopClosureOutput out_;
+};
+
+}  // namespace vilslam
