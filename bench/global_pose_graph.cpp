@@ -4,11 +4,13 @@
 // pose and calls optimize(). Three cases: the loop to the previous lap (the usual one), the loop to the first
 // lap (the whole graph moves), and the batch PoseGraph with every pose re-optimized warm-started after the
 // same new loop (what the bounded correction replaces; its counter diff_mm is the largest position difference
-// between the two corrected trajectories).
+// between the two corrected trajectories). Each at the default loop loss scale (1 sigma) and at 3.5 sigmas.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <map>
+#include <utility>
 
 #include "../tests/loop/block_route.h"
 #include "loop/global_pose_graph.h"
@@ -22,18 +24,22 @@ struct Setup {
   loop::GlobalPoseGraph graph;  // every loop before the last pose added and corrected
 };
 
-loop::GlobalPoseGraphConfig route_config() {
+// Benchmark arguments: the pose count and the loop loss scale in tenths of a sigma (10: the default 1 sigma).
+loop::GlobalPoseGraphConfig route_config(std::int64_t loss_scale_tenths) {
   loop::GlobalPoseGraphConfig config;
   config.odometry_sigma_m = test::kRouteOdometrySigmaM;
   config.odometry_sigma_rad = test::kRouteOdometrySigmaRad;
+  config.loop_loss_scale = 0.1 * static_cast<double>(loss_scale_tenths);
   return config;
 }
 
-const Setup& setup(std::size_t pose_count) {
-  static std::map<std::size_t, Setup> cache;
-  auto it = cache.find(pose_count);
+const Setup& setup(const benchmark::State& state) {
+  static std::map<std::pair<std::int64_t, std::int64_t>, Setup> cache;
+  const auto key = std::make_pair(state.range(0), state.range(1));
+  auto it = cache.find(key);
   if (it != cache.end()) return it->second;
-  Setup s{test::make_block_route(pose_count), loop::GlobalPoseGraph(route_config())};
+  const auto pose_count = static_cast<std::size_t>(state.range(0));
+  Setup s{test::make_block_route(pose_count), loop::GlobalPoseGraph(route_config(state.range(1)))};
   s.graph.add_first_pose(s.route.truth[0].t_ns, s.route.truth[0].T_W_B);
   std::size_t next_loop = 0;
   for (std::size_t i = 1; i < pose_count; ++i) {
@@ -45,7 +51,7 @@ const Setup& setup(std::size_t pose_count) {
       s.graph.optimize();
     }
   }
-  return cache.emplace(pose_count, std::move(s)).first->second;
+  return cache.emplace(key, std::move(s)).first->second;
 }
 
 // The new loop: the last pose seen again from `u`, measured from the truth.
@@ -71,19 +77,23 @@ void time_correction(benchmark::State& state, const Setup& s, const loop::Relati
 }
 
 void BM_GlobalCorrectionPreviousLap(benchmark::State& state) {
-  const Setup& s = setup(static_cast<std::size_t>(state.range(0)));
+  const Setup& s = setup(state);
   time_correction(state, s, new_loop(s.route, s.route.truth.size() - 1 - s.route.lap_poses));
 }
-BENCHMARK(BM_GlobalCorrectionPreviousLap)->Arg(1000)->Arg(5000)->Arg(20000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GlobalCorrectionPreviousLap)
+    ->ArgsProduct({{1000, 5000, 20000}, {10, 35}})
+    ->Unit(benchmark::kMillisecond);
 
 void BM_GlobalCorrectionFirstLap(benchmark::State& state) {
-  const Setup& s = setup(static_cast<std::size_t>(state.range(0)));
+  const Setup& s = setup(state);
   time_correction(state, s, new_loop(s.route, (s.route.truth.size() - 1) % s.route.lap_poses));
 }
-BENCHMARK(BM_GlobalCorrectionFirstLap)->Arg(1000)->Arg(5000)->Arg(20000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GlobalCorrectionFirstLap)
+    ->ArgsProduct({{1000, 5000, 20000}, {10, 35}})
+    ->Unit(benchmark::kMillisecond);
 
 void BM_BatchCorrectionPreviousLap(benchmark::State& state) {
-  const Setup& s = setup(static_cast<std::size_t>(state.range(0)));
+  const Setup& s = setup(state);
   const test::BlockRoute& r = s.route;
   const loop::RelativePoseConstraint c = new_loop(r, r.truth.size() - 1 - r.lap_poses);
   // The batch graph of the same factors, at its own solution before the new loop.
@@ -97,7 +107,9 @@ void BM_BatchCorrectionPreviousLap(benchmark::State& state) {
   for (const auto& l : r.loops) {
     if (l.to_index != r.truth.size() - 1) solved.add_constraint(l);
   }
-  solved.optimize();
+  loop::PoseGraphOptions options;
+  options.loop_loss_scale = 0.1 * static_cast<double>(state.range(1));
+  solved.optimize(options);
   loop::PoseGraphSummary summary;
   loop::PoseGraph graph;
   for (auto _ : state) {
@@ -105,7 +117,7 @@ void BM_BatchCorrectionPreviousLap(benchmark::State& state) {
     graph = solved;
     graph.add_constraint(c);
     state.ResumeTiming();
-    summary = graph.optimize();
+    summary = graph.optimize(options);
     benchmark::DoNotOptimize(graph.poses().back().T_W_B);
   }
   loop::GlobalPoseGraph global = s.graph;
@@ -119,6 +131,8 @@ void BM_BatchCorrectionPreviousLap(benchmark::State& state) {
   state.counters["iterations"] = summary.iterations;
   state.counters["diff_mm"] = 1e3 * diff_m;
 }
-BENCHMARK(BM_BatchCorrectionPreviousLap)->Arg(1000)->Arg(5000)->Arg(20000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BatchCorrectionPreviousLap)
+    ->ArgsProduct({{1000, 5000, 20000}, {10, 35}})
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
