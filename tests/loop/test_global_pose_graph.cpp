@@ -39,6 +39,34 @@ void add_loops(loop::GlobalPoseGraph& graph, const std::vector<loop::RelativePos
   for (const auto& c : loops) graph.add_loop(c.from_index, c.to_index, c.T_from_to, c.information);
 }
 
+loop::GlobalPoseGraphConfig route_config() {
+  loop::GlobalPoseGraphConfig config;
+  config.odometry_sigma_m = test::kRouteOdometrySigmaM;
+  config.odometry_sigma_rad = test::kRouteOdometrySigmaRad;
+  return config;
+}
+
+// The route's poses fed as the running system does, without loops.
+loop::GlobalPoseGraph route_graph(const test::BlockRoute& r) {
+  loop::GlobalPoseGraph graph(route_config());
+  graph.add_first_pose(r.truth[0].t_ns, r.truth[0].T_W_B);
+  for (std::size_t i = 1; i < r.truth.size(); ++i) graph.add_odometry(r.truth[i].t_ns, r.odometry[i]);
+  return graph;
+}
+
+// The batch graph of the route's odometry and `loops`, every pose a variable, starting from `initial`.
+loop::PoseGraph route_batch(const test::BlockRoute& r, const Trajectory& initial,
+                            const std::vector<loop::RelativePoseConstraint>& loops) {
+  loop::PoseGraph batch;
+  for (const TimedPose& p : initial) batch.add_pose(p.t_ns, p.T_W_B);
+  const Mat6 information = loop::information_from_sigmas(test::kRouteOdometrySigmaM, test::kRouteOdometrySigmaRad);
+  for (std::size_t i = 1; i < r.truth.size(); ++i) {
+    batch.add_constraint({i - 1, i, r.odometry[i], information, loop::ConstraintKind::kOdometry});
+  }
+  for (const auto& c : loops) batch.add_constraint(c);
+  return batch;
+}
+
 struct PoseDiff {
   double max_m = 0.0;
   double max_rad = 0.0;
@@ -106,10 +134,7 @@ TEST(GlobalPoseGraph, MatchesBatchOnSquare) {
 // against one batch solve of all factors at the end.
 TEST(GlobalPoseGraph, MatchesBatchOnLongMultiLoopRoute) {
   const test::BlockRoute r = test::make_block_route(3000);
-  loop::GlobalPoseGraphConfig config;
-  config.odometry_sigma_m = test::kRouteOdometrySigmaM;
-  config.odometry_sigma_rad = test::kRouteOdometrySigmaRad;
-  loop::GlobalPoseGraph graph(config);
+  loop::GlobalPoseGraph graph(route_config());
   graph.add_first_pose(r.truth[0].t_ns, r.truth[0].T_W_B);
   std::size_t next_loop = 0;
   std::size_t max_variables = 0;
@@ -124,14 +149,8 @@ TEST(GlobalPoseGraph, MatchesBatchOnLongMultiLoopRoute) {
   }
   ASSERT_EQ(next_loop, r.loops.size());
 
-  loop::PoseGraph batch;
   const Trajectory drifted = test::dead_reckoning(r);
-  for (const TimedPose& p : drifted) batch.add_pose(p.t_ns, p.T_W_B);
-  for (const auto& c : loop::odometry_constraints(
-           drifted, loop::information_from_sigmas(test::kRouteOdometrySigmaM, test::kRouteOdometrySigmaRad))) {
-    batch.add_constraint(c);
-  }
-  for (const auto& c : r.loops) batch.add_constraint(c);
+  loop::PoseGraph batch = route_batch(r, drifted, r.loops);
   batch.optimize();
   const PoseDiff d = max_diff(graph.trajectory(), batch.poses());
   const double ate_drifted = test::position_rmse(drifted, r.truth);
@@ -216,12 +235,7 @@ TEST(GlobalPoseGraph, RejectsBadInput) {
 TEST(GlobalPoseGraph, TwoRunsAreBitIdentical) {
   const test::BlockRoute r = test::make_block_route(1600);
   auto run = [&r] {
-    loop::GlobalPoseGraphConfig config;
-    config.odometry_sigma_m = test::kRouteOdometrySigmaM;
-    config.odometry_sigma_rad = test::kRouteOdometrySigmaRad;
-    loop::GlobalPoseGraph graph(config);
-    graph.add_first_pose(r.truth[0].t_ns, r.truth[0].T_W_B);
-    for (std::size_t i = 1; i < r.truth.size(); ++i) graph.add_odometry(r.truth[i].t_ns, r.odometry[i]);
+    loop::GlobalPoseGraph graph = route_graph(r);
     add_loops(graph, r.loops);
     graph.optimize();
     return graph.trajectory();
@@ -241,12 +255,7 @@ TEST(GlobalPoseGraph, TwoRunsAreBitIdentical) {
 TEST(GlobalPoseGraph, CorrectionMovesOnlyThePosesAfterTheLastCut) {
   const test::BlockRoute r = test::make_block_route(1600);
   ASSERT_GE(r.loops.size(), 2u);
-  loop::GlobalPoseGraphConfig config;
-  config.odometry_sigma_m = test::kRouteOdometrySigmaM;
-  config.odometry_sigma_rad = test::kRouteOdometrySigmaRad;
-  loop::GlobalPoseGraph graph(config);
-  graph.add_first_pose(r.truth[0].t_ns, r.truth[0].T_W_B);
-  for (std::size_t i = 1; i < r.truth.size(); ++i) graph.add_odometry(r.truth[i].t_ns, r.odometry[i]);
+  loop::GlobalPoseGraph graph = route_graph(r);
   add_loops(graph, {r.loops[0]});
   graph.optimize();
   const Trajectory before = graph.trajectory();
@@ -266,15 +275,7 @@ TEST(GlobalPoseGraph, CorrectionMovesOnlyThePosesAfterTheLastCut) {
   }
   EXPECT_GT((before.back().T_W_B.translation() - graph.pose(r.truth.size() - 1).translation()).norm(), 0.01);
 
-  loop::PoseGraph batch;
-  for (std::size_t i = 0; i < r.truth.size(); ++i) batch.add_pose(r.truth[i].t_ns, before[i].T_W_B);
-  for (std::size_t i = 1; i < r.truth.size(); ++i) {
-    batch.add_constraint({i - 1, i, r.odometry[i],
-                          loop::information_from_sigmas(test::kRouteOdometrySigmaM, test::kRouteOdometrySigmaRad),
-                          loop::ConstraintKind::kOdometry});
-  }
-  batch.add_constraint(r.loops[0]);
-  batch.add_constraint(late);
+  loop::PoseGraph batch = route_batch(r, before, {r.loops[0], late});
   batch.optimize();
   const PoseDiff d = max_diff(graph.trajectory(), batch.poses());
   std::printf("window of %zu poses, %zu variables; max difference to batch %.3f mm\n", summary.moved_poses,
