@@ -1,9 +1,13 @@
 #pragma once
 // The global pose graph of the running system (paper Fig. 3): every LiDAR mapping pose, a LiDAR odometry
 // factor between consecutive poses and loop factors with a robust loss. The paper solves it with iSAM2;
-// here each correction re-optimizes a bounded problem (docs/pose_graph.md): the cost of one correction
-// must stay bounded as the graph grows (bench/global_pose_graph.cpp, up to 20,000 poses).
+// here each correction re-optimizes a bounded problem (docs/pose_graph.md, "Bounded correction"): only the
+// poses after the last cut pose before the new loops move, the solver sees only anchor poses (loop ends and
+// every k-th pose) joined by composed odometry chains, and the poses between anchors follow their chain.
+// The cost of one correction stays bounded as the graph grows (bench/global_pose_graph.cpp, up to 20,000 poses).
 #include <cstddef>
+#include <limits>
+#include <vector>
 
 #include "common/lie.h"
 #include "common/types.h"
@@ -17,11 +21,15 @@ struct GlobalPoseGraphConfig {
   RobustLoss loop_loss = RobustLoss::kHuber;
   double loop_loss_scale = 1.0;       // whitened units
   int max_iterations = 50;
+  std::size_t anchor_spacing = 10;    // poses between anchors at least (1 s of sweeps at 10 Hz); 1 = batch
+  std::size_t max_anchors = 400;      // spacing grows so the anchors besides loop ends stay below this
 };
 
 struct CorrectionSummary {
   double solve_ms = 0.0;       // wall time of optimize()
-  std::size_t variables = 0;   // pose blocks optimized
+  std::size_t variables = 0;   // pose blocks optimized (anchors after the window's fixed first pose)
+  std::size_t moved_poses = 0; // poses after the window's first pose, all re-estimated
+  std::size_t anchor_spacing = 0;
   int iterations = 0;
   bool converged = false;
   double initial_cost = 0.0;
@@ -30,22 +38,37 @@ struct CorrectionSummary {
 
 class GlobalPoseGraph {
  public:
+  // Throws std::invalid_argument on non-positive sigmas, anchor_spacing 0 or max_anchors < 2.
   explicit GlobalPoseGraph(const GlobalPoseGraphConfig& config = {});
 
   // The first pose fixes the gauge. Later poses come with the measured LiDAR odometry since the previous
   // pose; the new pose's estimate is the previous pose's current estimate composed with it. Returns its index.
+  // std::logic_error on add_first_pose twice or add_odometry before it.
   std::size_t add_first_pose(TimeNs t_ns, const SE3& T_W_L);
   std::size_t add_odometry(TimeNs t_ns, const SE3& T_prev_cur);
   // A loop factor measuring T_from_to = (T_W_from)^-1 T_W_to; throws std::invalid_argument on a bad index
   // or an information matrix that is not symmetric positive definite.
   void add_loop(std::size_t from_index, std::size_t to_index, const SE3& T_from_to, const Mat6& information);
 
-  // Corrects every pose with the factors known now. Deterministic.
+  // Corrects every pose with the factors known now (nothing to do without a new loop). Deterministic.
   CorrectionSummary optimize();
 
-  std::size_t size() const;
-  const SE3& pose(std::size_t index) const;   // current best estimate T_W_L
-  Trajectory trajectory() const;              // all poses with their times
+  std::size_t size() const { return poses_.size(); }
+  const SE3& pose(std::size_t index) const { return poses_.at(index).T_W_B; }  // current best estimate T_W_L
+  const Trajectory& trajectory() const { return poses_; }                      // all poses with their times
+
+ private:
+  static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+
+  std::size_t window_start() const;
+  std::vector<std::size_t> select_anchors(std::size_t start, std::size_t& spacing) const;
+
+  GlobalPoseGraphConfig config_;
+  Mat6 odometry_covariance_;
+  Trajectory poses_;
+  std::vector<SE3> odometry_;  // odometry_[i] = measured T_{i-1,i}; odometry_[0] unused
+  std::vector<RelativePoseConstraint> loops_;
+  std::size_t first_new_loop_pose_ = kNone;  // lowest pose touched by a loop added since the last optimize()
 };
 
 }  // namespace vilslam::loop

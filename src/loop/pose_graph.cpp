@@ -75,15 +75,7 @@ std::size_t PoseGraph::add_pose(TimeNs t_ns, const SE3& T_W_L) {
 }
 
 void PoseGraph::add_constraint(const RelativePoseConstraint& constraint) {
-  if (constraint.from_index >= poses_.size() || constraint.to_index >= poses_.size()) {
-    throw std::invalid_argument("pose graph: constraint " + std::to_string(constraint.from_index) + " -> " +
-                                std::to_string(constraint.to_index) + " refers to a pose not added (" +
-                                std::to_string(poses_.size()) + " poses)");
-  }
-  if (constraint.from_index == constraint.to_index) {
-    throw std::invalid_argument("pose graph: constraint from a pose to itself");
-  }
-  sqrt_information(constraint.information);
+  check_constraint(constraint, poses_.size());
   constraints_.push_back(constraint);
 }
 
@@ -129,6 +121,18 @@ PoseGraphSummary PoseGraph::optimize(const PoseGraphOptions& options) {
   summary.odometry = residual_stats(poses_, constraints_, ConstraintKind::kOdometry);
   summary.loop = residual_stats(poses_, constraints_, ConstraintKind::kLoop);
   return summary;
+}
+
+void check_constraint(const RelativePoseConstraint& constraint, std::size_t pose_count) {
+  if (constraint.from_index >= pose_count || constraint.to_index >= pose_count) {
+    throw std::invalid_argument("pose graph: constraint " + std::to_string(constraint.from_index) + " -> " +
+                                std::to_string(constraint.to_index) + " refers to a pose not added (" +
+                                std::to_string(pose_count) + " poses)");
+  }
+  if (constraint.from_index == constraint.to_index) {
+    throw std::invalid_argument("pose graph: constraint from a pose to itself");
+  }
+  sqrt_information(constraint.information);
 }
 
 Vec6 whitened_residual(const RelativePoseConstraint& c, const SE3& T_W_u, const SE3& T_W_v) {

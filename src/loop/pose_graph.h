@@ -73,6 +73,10 @@ class PoseGraph {
   std::vector<RelativePoseConstraint> constraints_;
 };
 
+// Throws std::invalid_argument on an index not below pose_count, from == to, or an information matrix that is not
+// symmetric positive definite (what PoseGraph::add_constraint checks).
+void check_constraint(const RelativePoseConstraint& constraint, std::size_t pose_count);
+
 // Whitened residual r = sqrt(Info) Log(T_meas^-1 (T_W_u^-1 T_W_v)), as the optimizer evaluates it.
 Vec6 whitened_residual(const RelativePoseConstraint& c, const SE3& T_W_u, const SE3& T_W_v);
 

@@ -1,0 +1,134 @@
+// The global pose graph of the running system with bounded corrections (see global_pose_graph.h and
+// docs/pose_graph.md, "Bounded correction").
+#include "loop/global_pose_graph.h"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+#include "loop/odometry_chain.h"
+
+namespace vilslam::loop {
+namespace {
+
+std::size_t lower_end(const RelativePoseConstraint& c) { return std::min(c.from_index, c.to_index); }
+std::size_t upper_end(const RelativePoseConstraint& c) { return std::max(c.from_index, c.to_index); }
+
+// Index of pose `index` in the sorted anchor list (it is one).
+std::size_t anchor_slot(const std::vector<std::size_t>& anchors, std::size_t index) {
+  return static_cast<std::size_t>(std::lower_bound(anchors.begin(), anchors.end(), index) - anchors.begin());
+}
+
+}  // namespace
+
+GlobalPoseGraph::GlobalPoseGraph(const GlobalPoseGraphConfig& config)
+    : config_(config),
+      odometry_covariance_(information_from_sigmas(config.odometry_sigma_m, config.odometry_sigma_rad).inverse()) {
+  if (config.anchor_spacing == 0 || config.max_anchors < 2) {
+    throw std::invalid_argument("global pose graph: anchor_spacing must be >= 1 and max_anchors >= 2");
+  }
+}
+
+std::size_t GlobalPoseGraph::add_first_pose(TimeNs t_ns, const SE3& T_W_L) {
+  if (!poses_.empty()) throw std::logic_error("global pose graph: the first pose is already added");
+  poses_.push_back({t_ns, T_W_L});
+  odometry_.push_back(SE3());
+  return 0;
+}
+
+std::size_t GlobalPoseGraph::add_odometry(TimeNs t_ns, const SE3& T_prev_cur) {
+  if (poses_.empty()) throw std::logic_error("global pose graph: add_odometry before add_first_pose");
+  poses_.push_back({t_ns, poses_.back().T_W_B * T_prev_cur});
+  odometry_.push_back(T_prev_cur);
+  return poses_.size() - 1;
+}
+
+void GlobalPoseGraph::add_loop(std::size_t from_index, std::size_t to_index, const SE3& T_from_to,
+                               const Mat6& information) {
+  const RelativePoseConstraint loop{from_index, to_index, T_from_to, information, ConstraintKind::kLoop};
+  check_constraint(loop, poses_.size());
+  loops_.push_back(loop);
+  first_new_loop_pose_ = std::min(first_new_loop_pose_, lower_end(loop));
+}
+
+// The last pose s <= the lowest end of the new loops that no loop spans (lower end < s < upper end). Every path
+// from a pose after s to a pose before it passes through s, and the factors are invariant to moving all poses
+// by one rigid transform, so holding s and everything before it fixed loses nothing.
+std::size_t GlobalPoseGraph::window_start() const {
+  std::size_t start = first_new_loop_pose_;
+  for (bool moved = true; moved;) {
+    moved = false;
+    for (const RelativePoseConstraint& c : loops_) {
+      if (lower_end(c) < start && start < upper_end(c)) {
+        start = lower_end(c);
+        moved = true;
+      }
+    }
+  }
+  return start;
+}
+
+// Sorted anchors of the window [start, last]: its two ends, every loop end in it, and every spacing-th pose,
+// the spacing at least config_.anchor_spacing and large enough to keep those below config_.max_anchors.
+std::vector<std::size_t> GlobalPoseGraph::select_anchors(std::size_t start, std::size_t& spacing) const {
+  const std::size_t last = poses_.size() - 1;
+  std::vector<std::size_t> anchors = {start, last};
+  for (const RelativePoseConstraint& c : loops_) {
+    if (lower_end(c) >= start) {
+      anchors.push_back(c.from_index);
+      anchors.push_back(c.to_index);
+    }
+  }
+  const std::size_t length = last - start;
+  spacing = std::max(config_.anchor_spacing, (length + config_.max_anchors - 1) / config_.max_anchors);
+  for (std::size_t i = (start / spacing + 1) * spacing; i < last; i += spacing) anchors.push_back(i);
+  std::sort(anchors.begin(), anchors.end());
+  anchors.erase(std::unique(anchors.begin(), anchors.end()), anchors.end());
+  return anchors;
+}
+
+CorrectionSummary GlobalPoseGraph::optimize() {
+  CorrectionSummary summary;
+  if (first_new_loop_pose_ == kNone) return summary;
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::size_t start = window_start();
+  const std::vector<std::size_t> anchors = select_anchors(start, summary.anchor_spacing);
+
+  // The reduced graph: anchors (the window's first pose is its fixed gauge), one composed factor per chain
+  // between consecutive anchors, and the window's loops.
+  PoseGraph reduced;
+  for (std::size_t a : anchors) reduced.add_pose(poses_[a].t_ns, poses_[a].T_W_B);
+  for (std::size_t k = 0; k + 1 < anchors.size(); ++k) {
+    const ComposedChain chain = compose_chain(odometry_, anchors[k], anchors[k + 1], odometry_covariance_);
+    const Mat6 information = chain.covariance.inverse();
+    reduced.add_constraint({k, k + 1, chain.T_a_b, 0.5 * (information + information.transpose()),
+                            ConstraintKind::kOdometry});
+  }
+  for (const RelativePoseConstraint& c : loops_) {
+    if (lower_end(c) < start) continue;
+    reduced.add_constraint({anchor_slot(anchors, c.from_index), anchor_slot(anchors, c.to_index), c.T_from_to,
+                            c.information, ConstraintKind::kLoop});
+  }
+  PoseGraphOptions options;
+  options.loop_loss = config_.loop_loss;
+  options.loop_loss_scale = config_.loop_loss_scale;
+  options.max_iterations = config_.max_iterations;
+  const PoseGraphSummary solved = reduced.optimize(options);
+
+  for (std::size_t k = 0; k < anchors.size(); ++k) poses_[anchors[k]].T_W_B = reduced.poses()[k].T_W_B;
+  for (std::size_t k = 0; k + 1 < anchors.size(); ++k) {
+    correct_chain_interior(odometry_, anchors[k], anchors[k + 1], odometry_covariance_, poses_);
+  }
+  first_new_loop_pose_ = kNone;
+
+  summary.variables = anchors.size() - 1;
+  summary.moved_poses = poses_.size() - 1 - start;
+  summary.iterations = solved.iterations;
+  summary.converged = solved.converged;
+  summary.initial_cost = solved.initial_cost;
+  summary.final_cost = solved.final_cost;
+  summary.solve_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return summary;
+}
+
+}  // namespace vilslam::loop
