@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "common/error.h"
+#include "frontend/outlier_rejection.h"
 #include "lidar/registration.h"
 #include "loop/loop_constraint.h"
 
@@ -111,12 +112,15 @@ LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, dou
     p_C0u.push_back(u.image.points_C0[rows_with_point[m.train]]);
     xy_C0v.push_back(v.image.left_norm[m.query]);
   }
-  const PnpEstimate pnp = estimate_pnp(
-      p_C0u, xy_C0v,
-      {config_.pnp_ransac_iterations, config_.pnp_reprojection_px, v.image.focal_px, config_.pnp_ransac_seed});
+  FrontendConfig pnp_config;
+  pnp_config.pnp_min_points = 5;  // OpenCV's EPnP RANSAC sample; the stage's own bound is min_pnp_inliers
+  pnp_config.pnp_ransac_iterations = config_.pnp_ransac_iterations;
+  pnp_config.pnp_ransac_threshold_px = config_.pnp_reprojection_px;
+  pnp_config.ransac_seed = config_.pnp_ransac_seed;
+  const MotionEstimate pnp = estimate_motion_pnp(p_C0u, xy_C0v, v.image.focal_px, pnp_config, PnpSolver::kEPnP);
   r.pnp_inliers = pnp.inliers;
   if (!pnp.valid || r.pnp_inliers < config_.min_pnp_inliers) return rejected(std::move(r), "pnp_inliers");
-  r.T_Lu_Lv_epnp = lidar_constraint_from_camera(pnp.T_C0v_C0u, u.T_L_C0, v.T_L_C0);
+  r.T_Lu_Lv_epnp = lidar_constraint_from_camera(pnp.T_C0cur_C0prev, u.T_L_C0, v.T_L_C0);  // cur = v, prev = u
 
   // Refinement by ICP of the sparse LiDAR features, initialized at the visual constraint.
   const lidar::FeatureMap map = candidate_map(key_frames_, u.id, config_.submap_half_width, lidar_.map, T_W_L_of_pose);
