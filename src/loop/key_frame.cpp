@@ -5,10 +5,10 @@
 #include <string>
 
 #include "common/error.h"
-#include "frontend/corner_extractor.h"
 #include "frontend/klt_tracker.h"
 #include "frontend/outlier_rejection.h"
 #include "frontend/stereo_matcher.h"
+#include "loop/image_descriptors.h"
 
 namespace vilslam::loop {
 namespace {
@@ -32,8 +32,7 @@ struct Described {
 
 Described describe_whole_image(const cv::Mat& image, const CameraModel& camera, const FrontendConfig& config) {
   Described d;
-  d.px = detect_corners(image, config);
-  d.features.descriptors = d.px.empty() ? cv::Mat(0, 32, CV_8U) : describe_corners(image, &d.px, config);
+  d.features.descriptors = describe_image(image, config, &d.px);
   for (const cv::Point2f& c : d.px) d.features.xy.push_back(camera.pixel_to_normalized({c.x, c.y}));
   return d;
 }

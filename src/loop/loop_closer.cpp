@@ -99,7 +99,9 @@ LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, dou
     if (u.image.points_C0[i].allFinite()) rows_with_point.push_back(i);
   }
   cv::Mat train(static_cast<int>(rows_with_point.size()), 32, CV_8U);
-  for (std::size_t k = 0; k < rows_with_point.size(); ++k) u.image.descriptors.row(rows_with_point[k]).copyTo(train.row(int(k)));
+  for (std::size_t k = 0; k < rows_with_point.size(); ++k) {
+    u.image.descriptors.row(rows_with_point[k]).copyTo(train.row(static_cast<int>(k)));
+  }
   const std::vector<DescriptorMatch> matches =
       match_descriptors(v.image.descriptors, train, config_.descriptor_matching);
   r.descriptor_matches = static_cast<int>(matches.size());
@@ -145,11 +147,13 @@ LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, dou
   r.path_length_m += (T_W_Lv.translation() - p_prev_W).norm();
   r.odometry_disagreement_m = pose_difference(T_W_Lu.inverse() * T_W_Lv, r.T_Lu_Lv).translation_m;
 
-  if (r.icp_matched_fraction < config_.icp_min_matched_fraction || r.icp_inlier_fraction < config_.icp_min_inlier_fraction ||
-      r.icp_rms_m > config_.icp_max_rms_m) {
+  if (r.icp_matched_fraction < config_.icp_min_matched_fraction ||
+      r.icp_inlier_fraction < config_.icp_min_inlier_fraction || r.icp_rms_m > config_.icp_max_rms_m) {
     return rejected(std::move(r), "icp_fitness");
   }
-  if (r.icp_min_eigenvalue_per_match < config_.icp_min_eigenvalue_per_match) return rejected(std::move(r), "icp_degenerate");
+  if (r.icp_min_eigenvalue_per_match < config_.icp_min_eigenvalue_per_match) {
+    return rejected(std::move(r), "icp_degenerate");
+  }
   if (r.epnp_icp_translation_m > config_.max_epnp_icp_translation_m ||
       r.epnp_icp_rotation_rad > config_.max_epnp_icp_rotation_rad) {
     return rejected(std::move(r), "epnp_icp_disagree");

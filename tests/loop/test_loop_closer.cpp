@@ -102,7 +102,8 @@ TEST(LoopCloser, SubmapOfNeighbouringKeyScans) {
   closer.add_and_detect(scene().key_frame(before, s_to_ns(80.0), 0, 41), graph_poses(poses));
   closer.add_and_detect(at_time(key_frame_A(), 100.0, 1), graph_poses(poses));
   closer.add_and_detect(scene().key_frame(after, s_to_ns(120.0), 2, 51), graph_poses(poses));
-  const std::vector<LoopCandidateRecord> records = closer.add_and_detect(at_time(key_frame_B(), 200.0, 3), graph_poses(poses));
+  const std::vector<LoopCandidateRecord> records =
+      closer.add_and_detect(at_time(key_frame_B(), 200.0, 3), graph_poses(poses));
   ASSERT_FALSE(records.empty());
   const LoopCandidateRecord& r = records.back();
   ASSERT_TRUE(r.accepted()) << "rejected by " << r.rejected_by;
@@ -158,8 +159,8 @@ TEST(LoopCloser, OdometryCheckRejectsALoopFarFromThePrediction) {
   ASSERT_EQ(records.size(), 1u);
   EXPECT_EQ(records[0].rejected_by, "odometry_disagree");
   EXPECT_GT(records[0].odometry_disagreement_m, 19.0);
-  EXPECT_NEAR(records[0].path_length_m, (scene().T_W_L(pose_A()).translation() - scene().T_W_L(B_far).translation()).norm(),
-              1e-9);
+  EXPECT_NEAR(records[0].path_length_m,
+              (scene().T_W_L(pose_A()).translation() - scene().T_W_L(B_far).translation()).norm(), 1e-9);
 }
 
 TEST(LoopCloser, TimeGapHoldsBackRecentKeyFrames) {
@@ -243,7 +244,9 @@ TEST(LoopKeyImage, TriangulatedPointsLieOnTheRenderedSurfaces) {
     disparity_errors_px.push_back(error_px);
   }
   std::sort(disparity_errors_px.begin(), disparity_errors_px.end());
-  const auto quantile = [&](double q) { return disparity_errors_px[std::size_t(q * (disparity_errors_px.size() - 1))]; };
+  const auto quantile = [&](double q) {
+    return disparity_errors_px[std::size_t(q * (disparity_errors_px.size() - 1))];
+  };
   std::cout << image.num_points() << " of " << image.points_C0.size()
             << " corners triangulated; disparity error against the rendered depth: median " << quantile(0.5)
             << " px, 75th " << quantile(0.75) << " px, 90th " << quantile(0.9) << " px\n";

@@ -65,14 +65,31 @@ TEST(LoopClosureConfig, KeysOverrideDefaults) {
 }
 
 TEST(LoopClosureConfig, BadValuesAndUnknownKeysAreInputErrors) {
-  for (const std::string yaml :
-       {"min_time_gap_s: -1", "max_bow_candidates: 0", "min_bow_score: 1.5", "min_pnp_inliers: 4",
-        "min_descriptor_matches: 2", "pnp_reprojection_px: 0", "pnp_ransac_iterations: 0", "submap_half_width: -1",
-        "icp_min_inlier_fraction: 1.2", "icp_min_matched_fraction: -0.1", "icp_max_rms_m: 0", "icp_map_point_spacing_m: 0", "icp_source_leaf_m: -1",
-        "max_epnp_icp_translation_m: 0", "max_odometry_disagreement_m: 0", "loop_sigma_m: 0", "loop_sigma_rad: -1",
-        "key_frames: {min_translation_m: 0}", "descriptor_matching: {ratio_test: 0}",
-        "descriptor_matching: {max_distance: 300}", "min_time_gap: 30", "key_frames: {min_rotation_deg: 10}",
-        "min_time_gap_s: thirty", "loop_sigma_m: .nan", "enabled: maybe"}) {
+  for (const std::string yaml : {"min_time_gap_s: -1",
+                                 "max_bow_candidates: 0",
+                                 "min_bow_score: 1.5",
+                                 "min_pnp_inliers: 4",
+                                 "min_descriptor_matches: 2",
+                                 "pnp_reprojection_px: 0",
+                                 "pnp_ransac_iterations: 0",
+                                 "submap_half_width: -1",
+                                 "icp_min_inlier_fraction: 1.2",
+                                 "icp_min_matched_fraction: -0.1",
+                                 "icp_max_rms_m: 0",
+                                 "icp_map_point_spacing_m: 0",
+                                 "icp_source_leaf_m: -1",
+                                 "max_epnp_icp_translation_m: 0",
+                                 "max_odometry_disagreement_m: 0",
+                                 "loop_sigma_m: 0",
+                                 "loop_sigma_rad: -1",
+                                 "key_frames: {min_translation_m: 0}",
+                                 "descriptor_matching: {ratio_test: 0}",
+                                 "descriptor_matching: {max_distance: 300}",
+                                 "min_time_gap: 30",
+                                 "key_frames: {min_rotation_deg: 10}",
+                                 "min_time_gap_s: thirty",
+                                 "loop_sigma_m: .nan",
+                                 "enabled: maybe"}) {
     EXPECT_THROW(read(yaml), InputError) << yaml;
   }
 }
