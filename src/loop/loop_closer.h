@@ -92,8 +92,9 @@ struct LoopCandidateRecord {
 
 class LoopCloser {
  public:
-  // lidar: the run's LiDAR settings; the loop ICP uses its registration and feature map settings, as LiDAR
-  // mapping does. Throws InputError for an invalid config and std::invalid_argument without a vocabulary.
+  // lidar: the run's LiDAR settings; the loop ICP uses its registration and feature map settings but for
+  // icp_map_point_spacing_m and icp_source_leaf_m. Throws InputError for an invalid config and
+  // std::invalid_argument without a vocabulary.
   LoopCloser(const LoopClosureConfig& config, const lidar::LidarConfig& lidar,
              std::shared_ptr<const Vocabulary> vocabulary);
 
