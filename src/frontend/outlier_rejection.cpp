@@ -33,7 +33,7 @@ double stereo_reprojection_error_px(const StereoRig& rig, const Vec3& p_C0, cons
 }
 
 MotionEstimate estimate_motion_pnp(const std::vector<Vec3>& p_C0prev, const std::vector<Eigen::Vector2d>& xy_cur,
-                                   double focal_px, const FrontendConfig& config) {
+                                   double focal_px, const FrontendConfig& config, PnpSolver solver) {
   MotionEstimate estimate;
   if (static_cast<int>(p_C0prev.size()) < config.pnp_min_points) return estimate;
   std::vector<cv::Point3d> object;
@@ -48,7 +48,7 @@ MotionEstimate estimate_motion_pnp(const std::vector<Vec3>& p_C0prev, const std:
   cv::theRNG().state = config.ransac_seed;
   const bool ok = cv::solvePnPRansac(object, image, K, cv::noArray(), rvec, tvec, false, config.pnp_ransac_iterations,
                                      static_cast<float>(config.pnp_ransac_threshold_px / focal_px), 0.99, inliers,
-                                     cv::SOLVEPNP_P3P);
+                                     solver == PnpSolver::kEPnP ? cv::SOLVEPNP_EPNP : cv::SOLVEPNP_P3P);
   if (!ok || static_cast<int>(inliers.size()) < config.pnp_min_points) return estimate;
   std::vector<cv::Point3d> object_in;
   std::vector<cv::Point2d> image_in;

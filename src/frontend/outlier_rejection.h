@@ -25,11 +25,15 @@ struct MotionEstimate {
   int inliers = 0;
 };
 
+// The minimal solver inside RANSAC: P3P for frame-to-frame tracking, EPnP (Lepetit et al. 2009) for the
+// loop constraint (paper, "Loop constraint").
+enum class PnpSolver { kP3P, kEPnP };
+
 // Frame-to-frame motion of the left camera from 3D points of the previous pair (p_C0prev) and their
-// normalized observations in the current left image: P3P RANSAC (cv::solvePnPRansac, seeded through
-// cv::theRNG with config.ransac_seed) and Levenberg-Marquardt refinement on the inliers. Invalid when
-// fewer than config.pnp_min_points points or inliers.
+// normalized observations in the current left image: RANSAC of the solver (cv::solvePnPRansac, at most
+// config.pnp_ransac_iterations, seeded through cv::theRNG with config.ransac_seed) and Levenberg-Marquardt
+// refinement on the inliers. Invalid when fewer than config.pnp_min_points points or inliers.
 MotionEstimate estimate_motion_pnp(const std::vector<Vec3>& p_C0prev, const std::vector<Eigen::Vector2d>& xy_cur,
-                                   double focal_px, const FrontendConfig& config);
+                                   double focal_px, const FrontendConfig& config, PnpSolver solver = PnpSolver::kP3P);
 
 }  // namespace vilslam

@@ -23,13 +23,16 @@ struct KeyImage {
   cv::Mat descriptors;                      // N x 32 CV_8U ORB of the left image's Shi-Tomasi corners
   std::vector<Vec3> points_C0;              // row i triangulated from its stereo match, in C0; NaN when unmatched
   BowVector bow;                            // of all N descriptors
+  double focal_px = 0.0;                    // the left camera's mean focal length (normalized -> pixels)
 
   std::size_t num_points() const;           // rows with a finite 3D point
 };
 
 // Shi-Tomasi + ORB on both images (the frontend's settings), brute-force stereo matching gated by the
-// epipolar geometry (frontend/stereo_matcher.h), midpoint triangulation of the matches, BoW of the left
-// descriptors. Deterministic.
+// epipolar geometry (frontend/stereo_matcher.h), KLT refinement of the right corner and linear (DLT)
+// triangulation with the frontend's depth range and stereo reprojection check, BoW of the left
+// descriptors. Deterministic. Throws InputError for images that do not fit the rig (empty, not 8-bit
+// grey, wrong size).
 KeyImage make_key_image(const StereoFrame& frame, const StereoRig& rig, const FrontendConfig& config,
                         const Vocabulary& vocabulary);
 

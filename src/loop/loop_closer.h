@@ -6,6 +6,7 @@
 // against the candidate's key scan (or a submap of key scans around it). A loop is accepted only when the
 // ICP result is well constrained and agrees with EPnP and with the odometry (repeated structure guard).
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -13,7 +14,9 @@
 
 #include "common/lie.h"
 #include "common/yaml_config.h"
+#include "lidar/lidar_config.h"
 #include "loop/bow_database.h"
+#include "loop/descriptor_matching.h"
 #include "loop/key_frame.h"
 #include "loop/vocabulary.h"
 
@@ -26,15 +29,22 @@ struct LoopClosureConfig {
   double min_time_gap_s = 30.0;        // paper's time threshold: candidates at least this much older
   int max_bow_candidates = 3;          // best BoW results verified per query
   double min_bow_score = 0.0;          // absolute floor of the BoW score
-  int min_descriptor_matches = 40;     // left key image vs candidate (ratio test, mutual)
+  DescriptorMatchConfig descriptor_matching;  // query's left key image vs candidate's (Hamming, ratio, mutual)
+  int min_descriptor_matches = 40;     // of those, matches whose candidate row has a 3D point
   // EPnP in RANSAC on the candidate's 3D points and the query's left keypoints.
   int min_pnp_inliers = 25;
   double pnp_reprojection_px = 3.0;
   int pnp_ransac_iterations = 200;
+  std::uint64_t pnp_ransac_seed = 1;   // cv::theRNG() state before each RANSAC
   // ICP of the query key scan against the candidate's (paper) or a submap around it (beyond the paper).
   int submap_half_width = 0;           // key scans on each side of the candidate; 0 = scan to scan
-  double icp_min_inlier_fraction = 0.5;
-  double icp_max_rms_m = 0.1;
+  // The run's LiDAR registration settings, but denser: LiDAR mapping thins an accumulated map, a single
+  // key scan (or a few) keeps its features at this spacing and the query's at this voxel leaf.
+  double icp_map_point_spacing_m = 0.05;
+  double icp_source_leaf_m = 0.1;
+  double icp_min_matched_fraction = 0.4;  // query features that found a line or plane in the map
+  double icp_min_inlier_fraction = 0.5;   // matched features within the loss scale of their line or plane
+  double icp_max_rms_m = 0.3;             // over all matched features (non-overlapping parts included)
   double icp_min_eigenvalue_per_match = 0.03;  // no degenerate direction (lidar/degeneracy.h)
   // Consistency: EPnP vs ICP, and the loop vs the odometry's prediction of the same relative pose.
   double max_epnp_icp_translation_m = 0.3;
@@ -65,10 +75,12 @@ struct LoopCandidateRecord {
   int descriptor_matches = 0;
   int pnp_inliers = 0;
   double icp_rms_m = 0.0;
+  double icp_matched_fraction = 0.0;
   double icp_inlier_fraction = 0.0;
   double icp_min_eigenvalue_per_match = 0.0;
   double epnp_icp_translation_m = 0.0;
   double epnp_icp_rotation_rad = 0.0;
+  double path_length_m = 0.0;            // odometry path between the two key frames (key frame poses)
   double odometry_disagreement_m = 0.0;
   SE3 T_Lu_Lv_epnp;                      // EPnP alone, moved into the key scans' frames
   SE3 T_Lu_Lv;                           // EPnP + ICP: the loop constraint (u = candidate, v = query)
@@ -80,11 +92,17 @@ struct LoopCandidateRecord {
 
 class LoopCloser {
  public:
-  LoopCloser(const LoopClosureConfig& config, std::shared_ptr<const Vocabulary> vocabulary);
+  // lidar: the run's LiDAR settings; the loop ICP uses its registration and feature map settings but for
+  // icp_map_point_spacing_m and icp_source_leaf_m. Throws InputError for an invalid config and
+  // std::invalid_argument without a vocabulary.
+  LoopCloser(const LoopClosureConfig& config, const lidar::LidarConfig& lidar,
+             std::shared_ptr<const Vocabulary> vocabulary);
 
   // Verifies the BoW candidates of key_frame (its id is set here to the next position), then stores it in
   // the database and the key frame list. T_W_L(pose_index) is the current best estimate of any earlier
-  // graph pose (for the submap and the odometry check). Returns every examined candidate, in BoW order.
+  // graph pose (for the submap and the odometry check). Returns every examined candidate, in BoW order;
+  // examination stops at the first accepted one (at most one loop per query). Throws InputError when the
+  // key frame's image rows are inconsistent or it is not after the previous key frame.
   std::vector<LoopCandidateRecord> add_and_detect(KeyFrame key_frame,
                                                   const std::function<SE3(std::size_t)>& T_W_L_of_pose);
 
@@ -92,7 +110,12 @@ class LoopCloser {
   const LoopClosureConfig& config() const { return config_; }
 
  private:
+  // Runs the stages on candidate u of query v and stops at the first that fails.
+  LoopCandidateRecord verify(const KeyFrame& u, const KeyFrame& v, double bow_score,
+                             const std::function<SE3(std::size_t)>& T_W_L_of_pose) const;
+
   LoopClosureConfig config_;
+  lidar::LidarConfig lidar_;
   std::shared_ptr<const Vocabulary> vocabulary_;
   BowDatabase database_;
   std::vector<KeyFrame> key_frames_;

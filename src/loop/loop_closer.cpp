@@ -1,0 +1,172 @@
+#include "loop/loop_closer.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "common/error.h"
+#include "frontend/outlier_rejection.h"
+#include "lidar/registration.h"
+#include "loop/loop_constraint.h"
+
+namespace vilslam::loop {
+namespace {
+
+void check_key_frame(const KeyFrame& k, TimeNs last_t_ns, bool has_last) {
+  const std::string source = "loop key frame t_ns=" + std::to_string(k.image.t_ns);
+  const cv::Mat& d = k.image.descriptors;
+  if (!d.empty() && (d.type() != CV_8UC1 || d.cols != 32)) throw InputError(source, "descriptors are not N x 32 CV_8U");
+  const std::size_t n = static_cast<std::size_t>(d.rows);
+  if (k.image.left_norm.size() != n || k.image.points_C0.size() != n) {
+    throw InputError(source, "left_norm and points_C0 need one entry per descriptor row");
+  }
+  if (has_last && k.image.t_ns <= last_t_ns) throw InputError(source, "not after the previous key frame");
+}
+
+// The candidate's key scan in Lu, or with half_width > 0 the key scans around it moved into Lu by the
+// current pose estimates (relative poses over short spans are accurate).
+lidar::FeatureMap candidate_map(const std::vector<KeyFrame>& key_frames, std::size_t candidate, int half_width,
+                                const lidar::FeatureMapConfig& map_config,
+                                const std::function<SE3(std::size_t)>& T_W_L_of_pose) {
+  lidar::FeatureMap map(map_config);
+  const KeyFrame& u = key_frames[candidate];
+  map.insert(u.features_L, SE3());
+  if (half_width == 0) return map;
+  const SE3 T_Lu_W = T_W_L_of_pose(u.pose_index).inverse();
+  const std::size_t first = candidate >= static_cast<std::size_t>(half_width) ? candidate - half_width : 0;
+  const std::size_t last = std::min(key_frames.size() - 1, candidate + static_cast<std::size_t>(half_width));
+  for (std::size_t j = first; j <= last; ++j) {
+    if (j != candidate) map.insert(key_frames[j].features_L, T_Lu_W * T_W_L_of_pose(key_frames[j].pose_index));
+  }
+  return map;
+}
+
+LoopCandidateRecord rejected(LoopCandidateRecord r, const char* stage) {
+  r.rejected_by = stage;
+  return r;
+}
+
+}  // namespace
+
+LoopCloser::LoopCloser(const LoopClosureConfig& config, const lidar::LidarConfig& lidar,
+                       std::shared_ptr<const Vocabulary> vocabulary)
+    : config_(config), lidar_(lidar), vocabulary_(std::move(vocabulary)) {
+  validate_loop_closure_config(config_, "loop closure config");
+  validate_lidar_config(lidar_, "loop closure lidar config");
+  lidar_.map.edges.min_point_spacing_m = lidar_.map.surfaces.min_point_spacing_m = config_.icp_map_point_spacing_m;
+  lidar_.registration.source_edge_leaf_m = lidar_.registration.source_surface_leaf_m = config_.icp_source_leaf_m;
+  if (!vocabulary_ || vocabulary_->empty()) throw std::invalid_argument("LoopCloser needs a trained vocabulary");
+}
+
+std::vector<LoopCandidateRecord> LoopCloser::add_and_detect(KeyFrame key_frame,
+                                                            const std::function<SE3(std::size_t)>& T_W_L_of_pose) {
+  check_key_frame(key_frame, key_frames_.empty() ? 0 : key_frames_.back().image.t_ns, !key_frames_.empty());
+  key_frame.id = key_frames_.size();
+  const KeyFrame& v = key_frame;
+  std::vector<LoopCandidateRecord> records;
+  // Loop detection: the BoW database of key images older than the time threshold (paper, "Loop detection").
+  const std::vector<LoopCandidate> candidates =
+      database_.query(v.image.bow, v.image.t_ns, static_cast<std::size_t>(config_.max_bow_candidates),
+                      s_to_ns(config_.min_time_gap_s));
+  for (const LoopCandidate& c : candidates) {
+    const KeyFrame& u = key_frames_[static_cast<std::size_t>(c.id)];
+    LoopCandidateRecord r = verify(u, v, c.score, T_W_L_of_pose);
+    const bool accepted = r.accepted();
+    records.push_back(std::move(r));
+    if (accepted) break;  // at most one loop per query: the first accepted in BoW order
+  }
+  database_.add(static_cast<std::int64_t>(key_frame.id), key_frame.image.t_ns, key_frame.image.bow);
+  key_frames_.push_back(std::move(key_frame));
+  return records;
+}
+
+LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, double bow_score,
+                                       const std::function<SE3(std::size_t)>& T_W_L_of_pose) const {
+  LoopCandidateRecord r;
+  r.query_key_frame = v.id;
+  r.candidate_key_frame = u.id;
+  r.query_pose_index = v.pose_index;
+  r.candidate_pose_index = u.pose_index;
+  r.query_t_ns = v.scan_t_ns;
+  r.candidate_t_ns = u.scan_t_ns;
+  r.bow_score = bow_score;
+  if (bow_score < config_.min_bow_score) return rejected(std::move(r), "bow_score");
+
+  // Descriptor matching of the left key images (paper, "Loop detection"), against candidate rows with a 3D point.
+  std::vector<int> rows_with_point;
+  for (int i = 0; i < u.image.descriptors.rows; ++i) {
+    if (u.image.points_C0[i].allFinite()) rows_with_point.push_back(i);
+  }
+  cv::Mat train(static_cast<int>(rows_with_point.size()), 32, CV_8U);
+  for (std::size_t k = 0; k < rows_with_point.size(); ++k) {
+    u.image.descriptors.row(rows_with_point[k]).copyTo(train.row(static_cast<int>(k)));
+  }
+  const std::vector<DescriptorMatch> matches =
+      match_descriptors(v.image.descriptors, train, config_.descriptor_matching);
+  r.descriptor_matches = static_cast<int>(matches.size());
+  if (r.descriptor_matches < config_.min_descriptor_matches) return rejected(std::move(r), "descriptor_matches");
+
+  // Visual loop constraint by EPnP on the candidate's triangulated points (paper, "Loop constraint").
+  std::vector<Vec3> p_C0u;
+  std::vector<Eigen::Vector2d> xy_C0v;
+  for (const DescriptorMatch& m : matches) {
+    p_C0u.push_back(u.image.points_C0[rows_with_point[m.train]]);
+    xy_C0v.push_back(v.image.left_norm[m.query]);
+  }
+  FrontendConfig pnp_config;
+  pnp_config.pnp_min_points = 5;  // OpenCV's EPnP RANSAC sample; the stage's own bound is min_pnp_inliers
+  pnp_config.pnp_ransac_iterations = config_.pnp_ransac_iterations;
+  pnp_config.pnp_ransac_threshold_px = config_.pnp_reprojection_px;
+  pnp_config.ransac_seed = config_.pnp_ransac_seed;
+  const MotionEstimate pnp = estimate_motion_pnp(p_C0u, xy_C0v, v.image.focal_px, pnp_config, PnpSolver::kEPnP);
+  r.pnp_inliers = pnp.inliers;
+  if (!pnp.valid || r.pnp_inliers < config_.min_pnp_inliers) return rejected(std::move(r), "pnp_inliers");
+  r.T_Lu_Lv_epnp = lidar_constraint_from_camera(pnp.T_C0cur_C0prev, u.T_L_C0, v.T_L_C0);  // cur = v, prev = u
+
+  // Refinement by ICP of the sparse LiDAR features, initialized at the visual constraint.
+  const lidar::FeatureMap map = candidate_map(key_frames_, u.id, config_.submap_half_width, lidar_.map, T_W_L_of_pose);
+  const lidar::RegistrationResult icp = lidar::register_scan(v.features_L, map, r.T_Lu_Lv_epnp, lidar_.registration);
+  r.T_Lu_Lv = icp.T_W_L;
+  r.icp_rms_m = icp.rms_residual_m;
+  r.icp_matched_fraction = icp.matched_fraction;
+  r.icp_inlier_fraction = icp.inlier_fraction;
+  const int icp_matches = icp.num_edge_matches + icp.num_surface_matches;
+  r.icp_min_eigenvalue_per_match = icp_matches > 0 ? icp.degeneracy.eigenvalues(0) / icp_matches : 0.0;
+  const PoseDifference epnp_icp = pose_difference(r.T_Lu_Lv_epnp, r.T_Lu_Lv);
+  r.epnp_icp_translation_m = epnp_icp.translation_m;
+  r.epnp_icp_rotation_rad = epnp_icp.rotation_rad;
+  // Repeated-structure guard: the loop against the odometry's T_Lu_Lv, allowing drift along the path.
+  const SE3 T_W_Lu = T_W_L_of_pose(u.pose_index), T_W_Lv = T_W_L_of_pose(v.pose_index);
+  Vec3 p_prev_W = T_W_Lu.translation();
+  for (std::size_t j = u.id + 1; j < key_frames_.size(); ++j) {
+    const Vec3 p_W = T_W_L_of_pose(key_frames_[j].pose_index).translation();
+    r.path_length_m += (p_W - p_prev_W).norm();
+    p_prev_W = p_W;
+  }
+  r.path_length_m += (T_W_Lv.translation() - p_prev_W).norm();
+  r.odometry_disagreement_m = pose_difference(T_W_Lu.inverse() * T_W_Lv, r.T_Lu_Lv).translation_m;
+
+  if (r.icp_matched_fraction < config_.icp_min_matched_fraction ||
+      r.icp_inlier_fraction < config_.icp_min_inlier_fraction || r.icp_rms_m > config_.icp_max_rms_m) {
+    return rejected(std::move(r), "icp_fitness");
+  }
+  if (r.icp_min_eigenvalue_per_match < config_.icp_min_eigenvalue_per_match) {
+    return rejected(std::move(r), "icp_degenerate");
+  }
+  if (r.epnp_icp_translation_m > config_.max_epnp_icp_translation_m ||
+      r.epnp_icp_rotation_rad > config_.max_epnp_icp_rotation_rad) {
+    return rejected(std::move(r), "epnp_icp_disagree");
+  }
+  if (r.odometry_disagreement_m >
+      config_.max_odometry_disagreement_m + config_.max_odometry_disagreement_per_m * r.path_length_m) {
+    return rejected(std::move(r), "odometry_disagree");
+  }
+  // Loop factor noise from the config sigmas (docs/loop.md: why not ICP's J^T J), [rho; phi] order.
+  r.information = Mat6::Zero();
+  r.information.diagonal() << Vec3::Constant(1.0 / (config_.loop_sigma_m * config_.loop_sigma_m)),
+      Vec3::Constant(1.0 / (config_.loop_sigma_rad * config_.loop_sigma_rad));
+  return r;
+}
+
+}  // namespace vilslam::loop
