@@ -18,11 +18,12 @@ constexpr TimeNs kRecentFramesNs = 2'000'000'000;  // stereo pairs kept as key i
 LoopClosureModule::LoopClosureModule(const loop::LoopClosureConfig& config,
                                      const loop::GlobalPoseGraphConfig& graph_config,
                                      std::shared_ptr<const Vocabulary> vocabulary, const RigCalibration& calib,
-                                     const FrontendConfig& frontend_config, const Trajectory* imu_poses,
-                                     double map_radius_m)
+                                     const FrontendConfig& frontend_config, const lidar::LidarConfig& lidar,
+                                     const Trajectory* imu_poses)
     : config_(config), vocabulary_(std::move(vocabulary)), calib_(calib), rig_(make_stereo_rig(calib)),
-      frontend_config_(frontend_config), imu_poses_(imu_poses), map_radius_m_(map_radius_m), graph_(graph_config) {
-  if (config_.enabled) closer_.emplace(config_, vocabulary_);
+      frontend_config_(frontend_config), imu_poses_(imu_poses), map_radius_m_(lidar.map.edges.max_distance_m),
+      graph_(graph_config) {
+  if (config_.enabled) closer_.emplace(config_, lidar, vocabulary_);
 }
 
 void LoopClosureModule::stereo(const StereoFrame& frame) {

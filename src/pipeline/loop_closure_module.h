@@ -43,9 +43,11 @@ class LoopClosureModule {
  public:
   // imu_poses: the VIO's IMU-rate poses (they give the motion between a key image and its key scan).
   // With loop closure disabled it only records the odometry (lidar_global = lidar_final = lidar_odometry).
+  // lidar: the run's LiDAR settings (the loop ICP's registration; the map radius of corrections).
   LoopClosureModule(const loop::LoopClosureConfig& config, const loop::GlobalPoseGraphConfig& graph_config,
                     std::shared_ptr<const Vocabulary> vocabulary, const RigCalibration& calib,
-                    const FrontendConfig& frontend_config, const Trajectory* imu_poses, double map_radius_m);
+                    const FrontendConfig& frontend_config, const lidar::LidarConfig& lidar,
+                    const Trajectory* imu_poses);
 
   // A stereo pair, its time already on the IMU clock. Kept for a short while as a key image candidate.
   void stereo(const StereoFrame& frame);

@@ -109,8 +109,8 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
     std::shared_ptr<const Vocabulary> vocabulary;
     if (config.loop.enabled) vocabulary = std::make_shared<const Vocabulary>(Vocabulary::load(
           config.vocabulary == "default" ? default_vocabulary_path() : config.vocabulary));
-    loop.emplace(config.loop, config.graph, vocabulary, reader.calibration(), config.frontend, &result.imu_poses,
-                 config.lidar.lidar.map.edges.max_distance_m);
+    loop.emplace(config.loop, config.graph, vocabulary, reader.calibration(), config.frontend, config.lidar.lidar,
+                 &result.imu_poses);
   }
   std::optional<LidarFeeder> lidar;
   if (config.mode != RunMode::kVio) {
