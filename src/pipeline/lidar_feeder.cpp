@@ -31,11 +31,14 @@ void LidarFeeder::poses_advanced() {
 }
 
 void LidarFeeder::map(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior) {
-  results_->push_back(mapper_.process(scan, T_W_I_prior));
-  if (!loop_) return;
-  if (const auto correction = loop_->scan_mapped(results_->back(), mapper_.last_features())) {
-    mapper_.relocalize(correction->T_W_L_last, correction->key_scans);
+  // A loop correction that arrived since the last sweep comes first (paper, "Re-localization").
+  if (loop_) {
+    if (const auto correction = loop_->take_correction()) {
+      mapper_.relocalize(correction->T_W_L_last, correction->key_scans);
+    }
   }
+  results_->push_back(mapper_.process(scan, T_W_I_prior));
+  if (loop_) loop_->scan_mapped(results_->back(), mapper_.last_features());
 }
 
 }  // namespace vilslam

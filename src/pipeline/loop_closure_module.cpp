@@ -30,29 +30,69 @@ void LoopClosureModule::stereo(const StereoFrame& frame) {
   if (!closer_) return;
   recent_frames_.push_back(frame);
   while (recent_frames_.front().t_ns < frame.t_ns - kRecentFramesNs) recent_frames_.pop_front();
+  if (!pending_) return;
+  if (const StereoFrame* image = key_image_for(pending_->scan_t_ns)) {
+    add_key_frame(*pending_, *image);
+    pending_.reset();
+  } else if (ns_to_s(frame.t_ns - pending_->scan_t_ns) > config_.key_frames.max_image_scan_gap_s) {
+    pending_.reset();  // no stereo pair near the key scan: it stays an ordinary scan
+  }
 }
 
-bool LoopClosureModule::make_key_frame(const lidar::LidarMappingResult& mapped, const lidar::FeatureScan& features_L,
-                                       std::size_t pose_index, loop::KeyFrame* key_frame) const {
-  // Paper: key images and key scans are associated by their timestamps.
+// Paper: key images and key scans are associated by their timestamps.
+const StereoFrame* LoopClosureModule::key_image_for(TimeNs scan_t_ns) const {
   const StereoFrame* nearest = nullptr;
   TimeNs best_gap_ns = std::numeric_limits<TimeNs>::max();
   for (const StereoFrame& f : recent_frames_) {
-    const TimeNs gap_ns = std::llabs(f.t_ns - mapped.t_ns);
+    const TimeNs gap_ns = std::llabs(f.t_ns - scan_t_ns);
     if (gap_ns < best_gap_ns) best_gap_ns = gap_ns, nearest = &f;
   }
-  if (!nearest || ns_to_s(best_gap_ns) > config_.key_frames.max_image_scan_gap_s) return false;
+  // A later pair may still come closer: decide only once one after the sweep's end is there.
+  const bool later_seen = !recent_frames_.empty() && recent_frames_.back().t_ns >= scan_t_ns;
+  if (!nearest || !later_seen || ns_to_s(best_gap_ns) > config_.key_frames.max_image_scan_gap_s) return nullptr;
+  return nearest;
+}
+
+void LoopClosureModule::add_key_frame(const PendingKeyScan& scan, const StereoFrame& frame) {
   const Trajectory& poses = *imu_poses_;
-  if (poses.empty() || nearest->t_ns < poses.front().t_ns || nearest->t_ns > poses.back().t_ns) return false;
-  // The key image's camera in the key scan's frame, through the VIO motion between the two instants.
-  const SE3 T_W_L_scan = pose_at(poses, mapped.t_ns) * calib_.T_I_L;
-  const SE3 T_W_C0_image = pose_at(poses, nearest->t_ns) * calib_.T_I_C0;
-  key_frame->pose_index = pose_index;
-  key_frame->scan_t_ns = mapped.t_ns;
-  key_frame->T_L_C0 = T_W_L_scan.inverse() * T_W_C0_image;
-  key_frame->image = loop::make_key_image(*nearest, rig_, frontend_config_, *vocabulary_);
-  key_frame->features_L = features_L;
-  return true;
+  if (poses.size() < 2 || frame.t_ns < poses.front().t_ns) return;
+  // The key image's camera in the key scan's frame, through the VIO motion between the two instants. The
+  // IMU-rate poses reach the sweep's end; an image up to the gap after it extrapolates their last step.
+  const auto T_W_I_at = [&poses](TimeNs t_ns) {
+    if (t_ns <= poses.back().t_ns) return pose_at(poses, t_ns);
+    const TimedPose& a = poses[poses.size() - 2];
+    const TimedPose& b = poses.back();
+    return interpolate(a.T_W_B, b.T_W_B, double(t_ns - a.t_ns) / double(b.t_ns - a.t_ns));
+  };
+  auto start = std::chrono::steady_clock::now();
+  loop::KeyFrame key_frame;
+  key_frame.pose_index = scan.pose_index;
+  key_frame.scan_t_ns = scan.scan_t_ns;
+  key_frame.T_L_C0 = (T_W_I_at(scan.scan_t_ns) * calib_.T_I_L).inverse() * T_W_I_at(frame.t_ns) * calib_.T_I_C0;
+  key_frame.image = loop::make_key_image(frame, rig_, frontend_config_, *vocabulary_);
+  key_frame.features_L = scan.features_L;
+  out_.key_frame_ms.push_back(elapsed_ms(start));
+  last_key_index_ = scan.pose_index;
+
+  start = std::chrono::steady_clock::now();
+  const auto records = closer_->add_and_detect(std::move(key_frame), [this](std::size_t i) { return graph_.pose(i); });
+  out_.detection_ms.push_back(elapsed_ms(start));
+  bool loop_found = false;
+  for (const loop::LoopCandidateRecord& r : records) {
+    out_.candidates.push_back(r);
+    if (!r.accepted()) continue;
+    graph_.add_loop(r.candidate_pose_index, r.query_pose_index, r.T_Lu_Lv, r.information);
+    loop_found = true;
+  }
+  if (!loop_found) return;
+  start = std::chrono::steady_clock::now();
+  graph_.optimize();
+  // The mapper resumes from its latest pose, corrected; lidar.tum stays continuous.
+  correction_ = correction_at(graph_.size() - 1);
+  out_.correction_ms.push_back(elapsed_ms(start));
+  T_odometry_mapper_ = out_.lidar_odometry.back().T_W_B * correction_->T_W_L_last.inverse();
+  last_mapper_T_W_L_ = correction_->T_W_L_last;
+  corrected_ = true;
 }
 
 MapCorrection LoopClosureModule::correction_at(std::size_t pose_index) const {
@@ -67,46 +107,30 @@ MapCorrection LoopClosureModule::correction_at(std::size_t pose_index) const {
   return c;
 }
 
-std::optional<MapCorrection> LoopClosureModule::scan_mapped(const lidar::LidarMappingResult& mapped,
-                                                            const lidar::FeatureScan& features_L) {
+void LoopClosureModule::scan_mapped(const lidar::LidarMappingResult& mapped, const lidar::FeatureScan& features_L) {
   // lidar.tum: the mapper's motion composed, continuous across the corrections.
   out_.lidar_odometry.push_back({mapped.t_ns, corrected_ ? T_odometry_mapper_ * mapped.T_W_L : mapped.T_W_L});
   const std::size_t index = last_mapper_T_W_L_
                                 ? graph_.add_odometry(mapped.t_ns, last_mapper_T_W_L_->inverse() * mapped.T_W_L)
                                 : graph_.add_first_pose(mapped.t_ns, mapped.T_W_L);
   last_mapper_T_W_L_ = mapped.T_W_L;
-  SE3 published = mapped.T_W_L;
-  std::optional<MapCorrection> correction;
-  const bool key = closer_ && (!last_key_index_ || loop::is_new_key_frame(graph_.pose(*last_key_index_),
-                                                                          graph_.pose(index), config_.key_frames));
-  loop::KeyFrame key_frame;
-  auto start = std::chrono::steady_clock::now();
-  if (key && make_key_frame(mapped, features_L, index, &key_frame)) {
-    out_.key_frame_ms.push_back(elapsed_ms(start));
-    last_key_index_ = index;
-    start = std::chrono::steady_clock::now();
-    const auto records = closer_->add_and_detect(std::move(key_frame), [this](std::size_t i) { return graph_.pose(i); });
-    out_.detection_ms.push_back(elapsed_ms(start));
-    bool loop_found = false;
-    for (const loop::LoopCandidateRecord& r : records) {
-      out_.candidates.push_back(r);
-      if (!r.accepted()) continue;
-      graph_.add_loop(r.candidate_pose_index, r.query_pose_index, r.T_Lu_Lv, r.information);
-      loop_found = true;
-    }
-    if (loop_found) {
-      start = std::chrono::steady_clock::now();
-      graph_.optimize();
-      correction = correction_at(index);
-      out_.correction_ms.push_back(elapsed_ms(start));
-      published = correction->T_W_L_last;
-      T_odometry_mapper_ = out_.lidar_odometry.back().T_W_B * published.inverse();
-      corrected_ = true;
-      last_mapper_T_W_L_ = published;
-    }
+  out_.lidar_global.push_back({mapped.t_ns, mapped.T_W_L});  // as published now
+  if (!closer_ || pending_) return;
+  if (last_key_index_ &&
+      !loop::is_new_key_frame(graph_.pose(*last_key_index_), graph_.pose(index), config_.key_frames)) {
+    return;
   }
-  out_.lidar_global.push_back({mapped.t_ns, published});
-  return correction;
+  pending_ = PendingKeyScan{mapped.t_ns, index, features_L};
+  if (const StereoFrame* image = key_image_for(mapped.t_ns)) {
+    add_key_frame(*pending_, *image);
+    pending_.reset();
+  }
+}
+
+std::optional<MapCorrection> LoopClosureModule::take_correction() {
+  std::optional<MapCorrection> c;
+  std::swap(c, correction_);
+  return c;
 }
 
 LoopClosureOutput LoopClosureModule::finish() {

@@ -41,26 +41,35 @@ struct MapCorrection {
 
 class LoopClosureModule {
  public:
+  // lidar: the run's LiDAR settings (the loop ICP's registration; the map radius of corrections).
   // imu_poses: the VIO's IMU-rate poses (they give the motion between a key image and its key scan).
   // With loop closure disabled it only records the odometry (lidar_global = lidar_final = lidar_odometry).
-  // lidar: the run's LiDAR settings (the loop ICP's registration; the map radius of corrections).
   LoopClosureModule(const loop::LoopClosureConfig& config, const loop::GlobalPoseGraphConfig& graph_config,
                     std::shared_ptr<const Vocabulary> vocabulary, const RigCalibration& calib,
                     const FrontendConfig& frontend_config, const lidar::LidarConfig& lidar,
                     const Trajectory* imu_poses);
 
-  // A stereo pair, its time already on the IMU clock. Kept for a short while as a key image candidate.
+  // A stereo pair, its time already on the IMU clock. Completes a key frame waiting for its key image.
   void stereo(const StereoFrame& frame);
-  // A sweep the mapper has just registered (features_L as the mapper registered them). Returns the
-  // correction the mapper must apply when a loop was accepted.
-  std::optional<MapCorrection> scan_mapped(const lidar::LidarMappingResult& mapped, const lidar::FeatureScan& features_L);
+  // A sweep the mapper has just registered (features_L as the mapper registered them). A key scan becomes a
+  // key frame once its key image is there (now, or with a later stereo pair).
+  void scan_mapped(const lidar::LidarMappingResult& mapped, const lidar::FeatureScan& features_L);
+  // The correction LiDAR mapping must apply before its next sweep, once per accepted loop.
+  std::optional<MapCorrection> take_correction();
 
-  // Final optimization; fills lidar_final.
+  // Fills lidar_final and the counts.
   LoopClosureOutput finish();
 
  private:
-  bool make_key_frame(const lidar::LidarMappingResult& mapped, const lidar::FeatureScan& features_L,
-                      std::size_t pose_index, loop::KeyFrame* key_frame) const;
+  struct PendingKeyScan {
+    TimeNs scan_t_ns = 0;
+    std::size_t pose_index = 0;
+    lidar::FeatureScan features_L;
+  };
+
+  const StereoFrame* key_image_for(TimeNs scan_t_ns) const;
+  // Builds the key frame of the pending key scan with the stereo pair, detects loops, corrects the graph.
+  void add_key_frame(const PendingKeyScan& scan, const StereoFrame& frame);
   MapCorrection correction_at(std::size_t pose_index) const;
 
   loop::LoopClosureConfig config_;
@@ -73,7 +82,9 @@ class LoopClosureModule {
   std::optional<loop::LoopCloser> closer_;
   loop::GlobalPoseGraph graph_;
   std::deque<StereoFrame> recent_frames_;
-  std::optional<SE3> last_mapper_T_W_L_;   // the mapper's previous output (corrected after a loop)
+  std::optional<PendingKeyScan> pending_;
+  std::optional<MapCorrection> correction_;
+  std::optional<SE3> last_mapper_T_W_L_;   // the mapper's last output (corrected after a loop)
   SE3 T_odometry_mapper_;                  // lidar_odometry = T_odometry_mapper_ * mapper output
   bool corrected_ = false;
   std::optional<std::size_t> last_key_index_;  // graph index of the last key scan
