@@ -1,0 +1,122 @@
+// Loop closure inside `vilslam run --mode vil` on a short closed route (the room preset, 8 m, one lap): the
+// return to the start is detected and every accepted loop is true against ground truth, the outputs are
+// consistent with each other, bit-identical over two runs, and `loop_closure.enabled: false` turns it off.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "eval/loop_eval.h"
+#include "io/dataset.h"
+#include "io/trajectory_io.h"
+#include "loop/loop_constraints_io.h"
+#include "test_util.h"
+
+namespace vilslam {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The lap lasts about 10 s: candidates must be at least 4 s old instead of the default 30 s.
+constexpr const char* kShortGapConfig = "loop_closure:\n  min_time_gap_s: 4.0\n";
+
+class LoopClosureRun : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    const fs::path dir = fs::temp_directory_path() / "vilslam_tests" / std::to_string(::getpid()) / "room8";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    data_ = new fs::path(dir / "data");
+    const test::CliResult sim = test::run_cli("simulate room --length 8 --seed 2 --out " + data_->string());
+    ASSERT_EQ(sim.exit_code, 0) << sim.output;
+    std::ofstream(dir / "short_gap.yaml") << kShortGapConfig;
+    std::ofstream(dir / "off.yaml") << kShortGapConfig << "  enabled: false\n";
+    for (const char* run : {"a", "b"}) {
+      const test::CliResult r = test::run_cli("run --mode vil " + data_->string() + " --config " +
+                                              (dir / "short_gap.yaml").string() + " --out " + (dir / run).string());
+      ASSERT_EQ(r.exit_code, 0) << r.output;
+    }
+    const test::CliResult off = test::run_cli("run --mode vil " + data_->string() + " --config " +
+                                              (dir / "off.yaml").string() + " --out " + (dir / "off").string());
+    ASSERT_EQ(off.exit_code, 0) << off.output;
+    runs_ = new fs::path(dir);
+  }
+  static void TearDownTestSuite() {
+    delete data_;
+    delete runs_;
+  }
+  static Trajectory gt_lidar() {
+    const auto reader = open_dataset(data_->string());
+    Trajectory gt;
+    for (const GroundTruthState& g : reader->groundtruth()) gt.push_back({g.t_ns, g.T_W_I * reader->calibration().T_I_L});
+    return gt;
+  }
+  static Trajectory read(const std::string& run, const std::string& file) {
+    return read_trajectory((*runs_ / run / file).string(), TrajectoryFormat::kTum);
+  }
+  static fs::path* data_;
+  static fs::path* runs_;
+};
+fs::path* LoopClosureRun::data_ = nullptr;
+fs::path* LoopClosureRun::runs_ = nullptr;
+
+TEST_F(LoopClosureRun, DetectsTheReturnWithTrueConstraints) {
+  const std::vector<loop::LoopRow> rows = loop::read_loop_rows((*runs_ / "a" / "loops.csv").string());
+  ASSERT_GE(rows.size(), 1u) << test::read_file_bytes(*runs_ / "a" / "loop_candidates.csv");
+  std::vector<eval::LoopToEvaluate> loops;
+  for (const loop::LoopRow& r : rows) {
+    loops.push_back({r.from_t_ns, r.to_t_ns, r.T_from_to, r.T_from_to_epnp});
+    EXPECT_GE(r.to_t_ns - r.from_t_ns, 4'000'000'000) << "candidate younger than the time gap";
+  }
+  const eval::LoopEvaluation e = eval::evaluate_loops(loops, gt_lidar());
+  EXPECT_EQ(e.false_loops, 0);
+  for (const eval::LoopError& l : e.loops) {
+    EXPECT_LT(l.translation_m, 0.05);
+    EXPECT_LT(l.rotation_deg, 2.0);
+  }
+}
+
+TEST_F(LoopClosureRun, OutputsAgree) {
+  const Trajectory odometry = read("a", "lidar.tum");
+  const Trajectory global = read("a", "lidar_global.tum");
+  const Trajectory final_poses = read("a", "lidar_final.tum");
+  ASSERT_EQ(global.size(), odometry.size());
+  ASSERT_EQ(final_poses.size(), odometry.size());
+  // Until the first loop the published poses are the odometry; the final graph differs from both after it.
+  const TimeNs first_loop_ns = loop::read_loop_rows((*runs_ / "a" / "loops.csv").string()).at(0).to_t_ns;
+  double final_moved_m = 0;
+  for (std::size_t i = 0; i < odometry.size(); ++i) {
+    EXPECT_EQ(global[i].t_ns, odometry[i].t_ns);
+    if (odometry[i].t_ns <= first_loop_ns) {
+      EXPECT_LT((global[i].T_W_B.translation() - odometry[i].T_W_B.translation()).norm(), 1e-9) << i;
+    }
+    final_moved_m = std::max(final_moved_m, (final_poses[i].T_W_B.translation() - odometry[i].T_W_B.translation()).norm());
+  }
+  EXPECT_GT(final_moved_m, 1e-4);
+  // Every examined candidate names its stage; the accepted ones are the loops.
+  const std::string candidates = test::read_file_bytes(*runs_ / "a" / "loop_candidates.csv");
+  std::size_t accepted = 0;
+  for (std::size_t at = candidates.find(",accepted\n"); at != std::string::npos; at = candidates.find(",accepted\n", at + 1))
+    ++accepted;
+  EXPECT_EQ(accepted, loop::read_loop_rows((*runs_ / "a" / "loops.csv").string()).size());
+  EXPECT_NE(test::read_file_bytes(*runs_ / "a" / "timings.json").find("\"loops_accepted\""), std::string::npos);
+}
+
+TEST_F(LoopClosureRun, TwoRunsAreBitIdentical) {
+  for (const char* file : {"lidar.tum", "lidar_global.tum", "lidar_final.tum", "loops.csv", "loop_candidates.csv",
+                           "vio_camera.tum", "degeneracy.csv"}) {
+    EXPECT_EQ(test::read_file_bytes(*runs_ / "a" / file), test::read_file_bytes(*runs_ / "b" / file)) << file;
+  }
+}
+
+TEST_F(LoopClosureRun, DisabledGivesTheOdometryOnly) {
+  EXPECT_EQ(loop::read_loop_rows((*runs_ / "off" / "loops.csv").string()).size(), 0u);
+  EXPECT_EQ(test::read_file_bytes(*runs_ / "off" / "lidar_final.tum"), test::read_file_bytes(*runs_ / "off" / "lidar.tum"));
+  EXPECT_EQ(test::read_file_bytes(*runs_ / "off" / "lidar_global.tum"),
+            test::read_file_bytes(*runs_ / "off" / "lidar.tum"));
+  // Up to the first loop the enabled run maps exactly like the disabled one.
+  EXPECT_EQ(read("off", "lidar.tum").front().T_W_B.translation(), read("a", "lidar.tum").front().T_W_B.translation());
+}
+
+}  // namespace
+}  // namespace vilslam
