@@ -1,6 +1,6 @@
-// `vilslam odometry-table --work DIR [--presets a,b] [--seed S] [--preview] [--out FILE] [--note TEXT]`:
-// simulates (or reuses) each preset, runs `vil` and `lidar-only`, and writes the paper's odometry table
-// (docs/odometry.md, src/eval/odometry_table.h).
+// `vilslam odometry-table --work DIR [--presets a,b] [--seed S] [--preview] [--config RUN_YAML] [--out FILE]
+// [--note TEXT]`: simulates (or reuses) each preset, runs `vil` and `lidar-only`, and writes the paper's
+// Table I with odometry, loop-closed drift and loops (docs/odometry.md, src/eval/odometry_table.h).
 #include <spdlog/spdlog.h>
 #include <sys/utsname.h>
 #include <unistd.h>
@@ -22,6 +22,7 @@
 #include "eval/odometry_table.h"
 #include "io/dataset.h"
 #include "pipeline/offline_runner.h"
+#include "pipeline/run_config.h"
 #include "pipeline/run_outputs.h"
 #include "sim/simulator.h"
 #include "vilslam/command.h"
@@ -36,6 +37,7 @@ struct Options {
   std::vector<std::string> presets = {"highbay", "hallway", "tunnel"};
   std::uint64_t seed = 1;
   bool preview = false;
+  std::string config_path;  // run YAML of both runs; empty: built-in defaults
   std::string out = "docs/odometry.md";
   std::string note;
 };
@@ -72,11 +74,10 @@ struct ModeRun {
 };
 
 // Runs one mode like `vilslam run`, writing its folder; a failed run leaves no folder.
-ModeRun run_mode(const fs::path& data, RunMode mode, const fs::path& out) {
+ModeRun run_mode(const fs::path& data, OfflineRunConfig config, RunMode mode, const fs::path& out) {
   spdlog::info("odometry-table: {} on {}", run_mode_name(mode), data.string());
   ModeRun run;
   const auto reader = open_dataset(data.string());
-  OfflineRunConfig config;
   config.mode = mode;
   try {
     run.result = run_offline(*reader, config);
@@ -103,7 +104,21 @@ eval::RunTrajectory lidar_poses(const ModeRun& run, std::size_t* degenerate, std
   return traj;
 }
 
-eval::OdometryRow measure_preset(const fs::path& work, const std::string& preset, const Options& o) {
+// Loop closure of a vil run: lidar_final.tum, the candidates examined and the accepted loops (loops.csv).
+void add_loop_closure(const ModeRun& vil, eval::OdometryInputs* in) {
+  in->vil_final.failure = vil.failure;
+  if (!vil.result.loop) return;
+  const LoopClosureOutput& loop = *vil.result.loop;
+  in->vil_final.poses = loop.lidar_final;
+  eval::LoopClosureInputs loops;
+  loops.candidates_examined = loop.candidates.size();
+  for (const loop::LoopCandidateRecord& c : loop.candidates)
+    if (c.accepted()) loops.accepted.push_back({c.candidate_t_ns, c.query_t_ns, c.T_Lu_Lv, c.T_Lu_Lv_epnp});
+  in->loops = std::move(loops);
+}
+
+eval::OdometryRow measure_preset(const fs::path& work, const std::string& preset, const OfflineRunConfig& config,
+                                 const Options& o) {
   const fs::path data = work / preset;
   eval::OdometryInputs in;
   in.preset = preset;
@@ -114,11 +129,12 @@ eval::OdometryRow measure_preset(const fs::path& work, const std::string& preset
     in.gt_T_W_L.push_back({g.t_ns, g.T_W_I * reader->calibration().T_I_L});
   }
   if (in.gt_T_W_I.size() < 2) throw InputError(data.string(), "has no ground truth to evaluate against");
-  const ModeRun vil = run_mode(data, RunMode::kVil, work / (preset + "_vil"));
-  const ModeRun lidar_only = run_mode(data, RunMode::kLidarOnly, work / (preset + "_lidar-only"));
+  const ModeRun vil = run_mode(data, config, RunMode::kVil, work / (preset + "_vil"));
+  const ModeRun lidar_only = run_mode(data, config, RunMode::kLidarOnly, work / (preset + "_lidar-only"));
   in.vio = {vil.result.camera_states, vil.failure};
   in.vil = lidar_poses(vil, &in.vil_degenerate, &in.vil_sweeps);
   in.lidar_only = lidar_poses(lidar_only, &in.lidar_only_degenerate, &in.lidar_only_sweeps);
+  add_loop_closure(vil, &in);
   return eval::compute_odometry_row(in);
 }
 
@@ -133,7 +149,8 @@ std::string command_line(const Options& o) {
   std::string presets;
   for (const std::string& p : o.presets) presets += (presets.empty() ? "" : ",") + p;
   std::string cmd = "vilslam odometry-table --work " + o.work + " --presets " + presets + " --seed " +
-                    std::to_string(o.seed) + (o.preview ? " --preview" : "") + " --out " + o.out;
+                    std::to_string(o.seed) + (o.preview ? " --preview" : "") +
+                    (o.config_path.empty() ? "" : " --config " + o.config_path) + " --out " + o.out;
   if (!o.note.empty()) cmd += " --note '" + o.note + "'";
   return cmd;
 }
@@ -156,7 +173,8 @@ std::string machine(double load_at_start) {
   return buf;
 }
 
-vilslam::cli::Command reg("odometry-table", "Paper's odometry table (VIO / VIL / LiDAR-only FDE) on simulated presets",
+vilslam::cli::Command reg("odometry-table",
+                          "Paper's Table I (VIO / VIL / LiDAR-only / loop-closed FDE, loops) on simulated presets",
                           [](CLI::App& app) {
   auto o = std::make_shared<Options>();
   app.add_option("--work", o->work, "Work folder: WORK/<preset> (reused or simulated), WORK/<preset>_<mode> runs")
@@ -164,6 +182,7 @@ vilslam::cli::Command reg("odometry-table", "Paper's odometry table (VIO / VIL /
   app.add_option("--presets", o->presets, "Comma-separated presets")->delimiter(',')->capture_default_str();
   app.add_option("--seed", o->seed, "Seed of the presets simulated here")->capture_default_str();
   app.add_flag("--preview", o->preview, "Simulate only the preview seconds (quick check, the route does not close)");
+  app.add_option("--config", o->config_path, "Run YAML of the vil and lidar-only runs (as `vilslam run --config`)");
   app.add_option("--out", o->out, "Markdown file to write")->capture_default_str();
   app.add_option("--note", o->note, "Text appended to the page (e.g. how reused simulations were made)");
   return [o]() {
@@ -171,12 +190,13 @@ vilslam::cli::Command reg("odometry-table", "Paper's odometry table (VIO / VIL /
     double load[1] = {0};
     getloadavg(load, 1);
     for (const std::string& preset : o->presets) sim::parse_scenario(preset);
+    const OfflineRunConfig config = o->config_path.empty() ? OfflineRunConfig{} : load_run_config(o->config_path);
     check_writable(o->out);
     std::error_code ec;
     fs::create_directories(o->work, ec);
     if (ec) throw InputError(o->work, "cannot create the work folder: " + ec.message());
     std::vector<eval::OdometryRow> rows;
-    for (const std::string& preset : o->presets) rows.push_back(measure_preset(o->work, preset, *o));
+    for (const std::string& preset : o->presets) rows.push_back(measure_preset(o->work, preset, config, *o));
     eval::OdometryDocument doc;
     doc.command = command_line(*o);
     doc.date_utc = date_utc();

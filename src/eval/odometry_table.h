@@ -1,7 +1,8 @@
 #pragma once
-// The paper's odometry table (VIL-SLAM Table I, FDE column) on simulated presets: per preset the final
-// drift of the VIO, of the VIL LiDAR mapping poses and of LiDAR-only mapping, their ATE against ground
-// truth, the degenerate sweeps, next to the paper's values; rendered as Markdown (docs/odometry.md).
+// The paper's Table I (FDE column) on simulated presets: per preset the final drift of the VIO, of the
+// VIL LiDAR odometry, of LiDAR-only mapping and of the loop-closed VIL trajectory, their ATE against ground
+// truth, the degenerate sweeps, the loops found and their errors, next to the paper's values; rendered as
+// Markdown (docs/odometry.md).
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "common/types.h"
 #include "eval/alignment.h"
+#include "eval/loop_eval.h"
 
 namespace vilslam::eval {
 
@@ -18,6 +20,13 @@ struct RunTrajectory {
   std::string failure;  // non-empty: the run threw (its message)
 };
 
+// Loop closure of the VIL run: how many candidates it examined and the loops it accepted (T_Lu_Lv with
+// from = the old key scan u, to = the current one v, as in loops.csv).
+struct LoopClosureInputs {
+  std::size_t candidates_examined = 0;
+  std::vector<LoopToEvaluate> accepted;
+};
+
 // Everything one row needs. Ground truth and estimates of the LiDAR runs are in the LiDAR frame (T_W_L).
 struct OdometryInputs {
   std::string preset;
@@ -25,7 +34,9 @@ struct OdometryInputs {
   Trajectory gt_T_W_I;       // ground truth of the IMU body
   Trajectory gt_T_W_L;       // ground truth of the LiDAR (T_W_I T_I_L)
   RunTrajectory vio;         // camera-rate VIO states T_W_I
-  RunTrajectory vil;         // VIL LiDAR mapping poses T_W_L
+  RunTrajectory vil;         // VIL LiDAR odometry T_W_L (lidar.tum: the mapper's motion, no loop correction)
+  RunTrajectory vil_final;   // VIL LiDAR poses T_W_L after loop closure (lidar_final.tum)
+  std::optional<LoopClosureInputs> loops;  // nullopt: the VIL run failed
   RunTrajectory lidar_only;  // LiDAR-only mapping poses T_W_L
   std::size_t vil_degenerate = 0, vil_sweeps = 0;
   std::size_t lidar_only_degenerate = 0, lidar_only_sweeps = 0;
@@ -54,6 +65,11 @@ struct DriftResult {
   AlignMode align = AlignMode::kNone;
 };
 
+struct LoopClosureResult {
+  std::size_t candidates_examined = 0;
+  LoopEvaluation accepted;  // one entry per accepted loop; its false_loops exceed 0.3 m or 3 degrees
+};
+
 struct OdometryRow {
   std::string preset, source;
   double gt_length_m = 0;
@@ -61,6 +77,8 @@ struct OdometryRow {
   bool closed = false;   // gt_gap_m <= kClosedRouteGapM: FDE = |p_last - p_first| of the estimate over its
                          // path length (paper); otherwise the start-aligned drift against ground truth
   DriftResult vio, vil, lidar_only;
+  DriftResult vil_final;                   // after loop closure, evaluated like vil
+  std::optional<LoopClosureResult> loops;  // nullopt: the VIL run failed
   std::size_t vil_degenerate = 0, vil_sweeps = 0;
   std::size_t lidar_only_degenerate = 0, lidar_only_sweeps = 0;
 };
@@ -69,15 +87,18 @@ struct OdometryRow {
 DriftResult evaluate_drift(const RunTrajectory& run, const Trajectory& gt, AlignMode align, bool closed,
                            const LostCriteria& criteria = {});
 
-// Throws std::invalid_argument when the ground truth has fewer than 2 poses.
+// Throws std::invalid_argument when the ground truth has fewer than 2 poses or does not span a loop's instants.
 OdometryRow compute_odometry_row(const OdometryInputs& in, const LostCriteria& criteria = {});
 
-// The paper's Table I (odometry FDE in %, path length in m) for a preset; nullopt for presets it lacks.
+// The paper's Table I (odometry FDE in %, path length in m) for a preset and what its results section says
+// of loop closure on it; nullopt for presets it lacks.
 struct PaperOdometry {
   std::string test;                   // the paper's name of the test
   double length_m = 0;
   double vil_slam_fde_percent = 0;
   std::optional<double> loam_fde_percent;  // nullopt: LOAM did not finish
+  std::optional<double> vil_slam_loop_fde_percent;  // FDE after loop closure, when the text gives one
+  std::string loop_remark;            // otherwise what the text says ("" when it says nothing)
 };
 std::optional<PaperOdometry> paper_odometry(const std::string& preset);
 

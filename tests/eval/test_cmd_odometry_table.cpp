@@ -1,8 +1,9 @@
 // `vilslam odometry-table` end to end on a preview highbay: simulated when missing, reused when present,
-// the page holds the numbers `vilslam eval` gives; bad input exits 2.
+// the page holds the numbers `vilslam eval` gives, `--config` reaches both runs; bad input exits 2.
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <fstream>
 
 #include "eval/trajectory_eval.h"
 #include "io/dataset.h"
@@ -43,6 +44,7 @@ TEST(CmdOdometryTable, PreviewHighbaySimulatesThenReuses) {
                                           " --presets highbay --seed 3 --preview --out " + page.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* sub : {"highbay/groundtruth.tum", "highbay_vil/vio_camera.tum", "highbay_vil/lidar.tum",
+                          "highbay_vil/lidar_final.tum", "highbay_vil/loops.csv",
                           "highbay_lidar-only/lidar.tum", "highbay_lidar-only/degeneracy.csv"})
     EXPECT_TRUE(fs::exists(work / sub)) << sub;
   const std::string text = test::read_file_bytes(page);
@@ -81,17 +83,38 @@ TEST(CmdOdometryTable, PreviewHighbaySimulatesThenReuses) {
   EXPECT_NE(row.find(" / " + fixed3(lidar_only.ape.trans.rmse) + " |"), std::string::npos) << row;
   EXPECT_LT(lidar_only.ape.trans.rmse, 0.10);
 
+  // The loop-closed trajectory: FDE (start-aligned, posyaw) and SE(3) ATE from the written lidar_final.tum.
+  // The 1.5 s preview revisits nothing: no candidate is examined, no loop accepted, no median error.
+  const Trajectory lidar_final = read_trajectory((work / "highbay_vil/lidar_final.tum").string(), TrajectoryFormat::kTum);
+  eval::TrajectoryEvalConfig posyaw;
+  posyaw.align = eval::AlignMode::kPosYaw;
+  const eval::TrajectoryEvalReport final_posyaw = eval::evaluate_trajectory(lidar_final, gt_L, posyaw);
+  EXPECT_NE(row.find(" | " + fixed3(final_posyaw.fde_start_aligned.percent) + " %† (" +
+                     fixed3(final_posyaw.fde_start_aligned.drift_m) + " m) | "),
+            std::string::npos)
+      << row;
+  const eval::TrajectoryEvalReport final_se3 = eval::evaluate_trajectory(lidar_final, gt_L, se3);
+  EXPECT_NE(row.find(" / " + fixed3(final_se3.ape.trans.rmse) + " | 0 / 0 / 0 | – |"), std::string::npos) << row;
+
   // A second work folder whose highbay is a link to the first: reused, same numbers.
-  const fs::path work2 = dir / "work2", page2 = dir / "odometry2.md";
+  // Its --config (loop closure off) reaches both runs; with no loop in the preview the numbers stay.
+  const fs::path work2 = dir / "work2", page2 = dir / "odometry2.md", config = dir / "no_loops.yaml";
   fs::create_directories(work2);
   fs::create_directory_symlink(work / "highbay", work2 / "highbay");
+  std::ofstream(config) << "loop_closure:\n  enabled: false\n";
   const test::CliResult again = test::run_cli("odometry-table --work " + work2.string() +
-                                              " --presets highbay --seed 3 --preview --out " + page2.string());
+                                              " --presets highbay --seed 3 --preview --config " + config.string() +
+                                              " --out " + page2.string());
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_EQ(again.output.find("simulate highbay"), std::string::npos) << again.output;
   const std::string row2 = table_row(test::read_file_bytes(page2), "highbay");
   EXPECT_NE(row2.find("| reused `" + (work2 / "highbay").string() + "` → `"), std::string::npos) << row2;
   EXPECT_EQ(after_source(row2), after_source(row));
+  for (const char* run : {"highbay_vil/config.yaml", "highbay_lidar-only/config.yaml"}) {
+    const std::string yaml = test::read_file_bytes(work2 / run);
+    EXPECT_NE(yaml.find("enabled: false"), std::string::npos) << run;
+  }
+  EXPECT_NE(test::read_file_bytes(page2).find(" --config " + config.string() + " --out "), std::string::npos);
 }
 
 TEST(CmdOdometryTable, BadInputExitsTwo) {
@@ -101,6 +124,13 @@ TEST(CmdOdometryTable, BadInputExitsTwo) {
   EXPECT_EQ(test::run_cli("odometry-table --work " + work + " --presets highbay --out " + (dir / "no/t.md").string())
                 .exit_code,
             2);
+  const fs::path bad_config = dir / "bad.yaml";
+  std::ofstream(bad_config) << "loop_closure:\n  enabeld: false\n";
+  EXPECT_EQ(test::run_cli("odometry-table --work " + work + " --presets highbay --config " + bad_config.string() +
+                          " --out " + page)
+                .exit_code,
+            2);
+  EXPECT_FALSE(fs::exists(dir / "work"));
   fs::create_directories(dir / "work" / "highbay");  // not a complete simulation
   EXPECT_EQ(test::run_cli("odometry-table --work " + work + " --presets highbay --out " + page).exit_code, 2);
   EXPECT_FALSE(fs::exists(page));

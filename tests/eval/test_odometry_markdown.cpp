@@ -28,6 +28,16 @@ OdometryRow highbay() {
   row.vio = drift(0.292, 0.342, 0.126, 0.1147);
   row.vil = drift(0.0104, 0.0123, 0.171, 0.0272);
   row.lidar_only = drift(0.0152, 0.018, 0.033, 0.033);
+  row.vil_final = drift(0.0031, 0.0036, 0.160, 0.0119);
+  LoopClosureResult loops;
+  loops.candidates_examined = 12;
+  loops.accepted.loops.resize(3);
+  loops.accepted.false_loops = 1;
+  loops.accepted.median_translation_m = 0.0214;
+  loops.accepted.median_rotation_deg = 0.317;
+  loops.accepted.median_epnp_translation_m = 0.0876;
+  loops.accepted.median_epnp_rotation_deg = 1.204;
+  row.loops = loops;
   row.vil_sweeps = 1021;
   row.lidar_only_sweeps = 1022;
   row.lidar_only_degenerate = 4;
@@ -45,14 +55,21 @@ TEST(OdometryMarkdown, RowCells) {
   EXPECT_EQ(count(table, "\n"), 3u) << table;  // header, rule, one row
   const std::string row = table.substr(table.find("| highbay"));
   EXPECT_NE(row.find("| reused `/tmp/ot/highbay` | 117.8 | 0.000 |"), std::string::npos) << row;
-  EXPECT_NE(row.find("| 0.292 % (0.342 m) | 0.010 % (0.012 m) | 0.015 % (0.018 m) |"), std::string::npos) << row;
-  EXPECT_NE(row.find("| 0.08 % (118 m) | 0.56 % | n/r | yes |"), std::string::npos) << row;
-  EXPECT_NE(row.find("| 0 of 1021 / 4 of 1022 | 0.126 / 0.171 / 0.033 | 0.115 / 0.027 |"), std::string::npos) << row;
+  EXPECT_NE(row.find("| 0.292 % (0.342 m) | 0.010 % (0.012 m) | 0.015 % (0.018 m) | 0.003 % (0.004 m) |"),
+            std::string::npos)
+      << row;
+  EXPECT_NE(row.find("| 0.08 % (118 m) | 0.56 % | n/r | closes the loop, no FDE given | yes |"), std::string::npos) << row;
+  EXPECT_NE(row.find("| 0 of 1021 / 4 of 1022 | 0.126 / 0.171 / 0.033 | 0.115 / 0.027 / 0.012 |"), std::string::npos)
+      << row;
+  EXPECT_NE(row.find("| 12 / 3 / 1 | 0.021 m 0.32° / 0.088 m 1.20° |\n"), std::string::npos) << row;
+  for (const char* column : {"| VIL + loop FDE |", "| paper VIL-SLAM + loop |", "| ATE RMSE se3 VIO / VIL / VIL + loop (m) |",
+                             "| loops examined / accepted / false |", "| median loop error EPnP+ICP / EPnP |"})
+    EXPECT_NE(table.find(column), std::string::npos) << column;
   EXPECT_EQ(row.find("†"), std::string::npos);
   EXPECT_EQ(table.find("Lost runs"), std::string::npos);
-  // Every line has the header's 14 columns.
+  // Every line has the header's 18 columns.
   for (std::size_t start = 0, end; (end = table.find('\n', start)) != std::string::npos; start = end + 1)
-    EXPECT_EQ(count(table.substr(start, end - start), "|"), 15u) << table.substr(start, end - start);
+    EXPECT_EQ(count(table.substr(start, end - start), "|"), 19u) << table.substr(start, end - start);
 }
 
 TEST(OdometryMarkdown, LostRunsOpenRoutesAndPresetsWithoutPaperValues) {
@@ -62,21 +79,29 @@ TEST(OdometryMarkdown, LostRunsOpenRoutesAndPresetsWithoutPaperValues) {
   tunnel.lidar_only = drift(30.0, 25.0, 9.0, 9.0);
   tunnel.lidar_only.lost = true;
   tunnel.lidar_only.lost_reason = "strays 14.00 m from ground truth (limit 8.50 m)";
+  tunnel.loops->candidates_examined = 4;
+  tunnel.loops->accepted = LoopEvaluation{};  // none accepted: no median error
   OdometryRow room = highbay();
   room.preset = "room";
   room.closed = false;
   room.gt_gap_m = 2.5;
+  room.loops.reset();  // the VIL run failed
+  room.vil_final.lost = true;
+  room.vil_final.lost_reason = "the run failed: no key image";
   const std::string table = odometry_table_markdown({tunnel, room});
   const std::string tunnel_row = table.substr(table.find("| tunnel"), table.find("| room") - table.find("| tunnel"));
   EXPECT_NE(tunnel_row.find("| 2.500 % (2.100 m) | **lost** |"), std::string::npos) << tunnel_row;
-  EXPECT_NE(tunnel_row.find("| 1.86 % (85 m) | not finished | n/r | no |"), std::string::npos) << tunnel_row;
+  EXPECT_NE(tunnel_row.find("| 1.86 % (85 m) | not finished | n/r | 0.08 % | no |"), std::string::npos) << tunnel_row;
+  EXPECT_NE(tunnel_row.find("| 4 / 0 / 0 | – |\n"), std::string::npos) << tunnel_row;
   EXPECT_NE(table.find("Lost runs:\n\n- tunnel, LiDAR-only: lost, strays 14.00 m from ground truth (limit 8.50 m) "
                        "(100 poses; FDE 30.000 %, 25.000 m; ATE RMSE 9.000 m)\n"),
             std::string::npos)
       << table;
   const std::string room_row = table.substr(table.find("| room"));
   EXPECT_NE(room_row.find("| 2.500 | 0.292 %† (0.342 m) |"), std::string::npos) << room_row;
-  EXPECT_NE(room_row.find("| – | – | – | – |"), std::string::npos) << room_row;
+  EXPECT_NE(room_row.find("| **lost** | – | – | – | – |"), std::string::npos) << room_row;
+  EXPECT_NE(room_row.find("| – | – |\n"), std::string::npos) << room_row;
+  EXPECT_NE(table.find("- room, VIL + loop: lost, the run failed: no key image"), std::string::npos) << table;
 }
 
 TEST(OdometryMarkdown, DocumentHasCommandTableDateAndNote) {
@@ -93,6 +118,11 @@ TEST(OdometryMarkdown, DocumentHasCommandTableDateAndNote) {
   EXPECT_NE(page.find("Measured 2026-11-22 15:40 UTC on vm (x86_64, 2 hardware threads); the command took 12.5 min."),
             std::string::npos);
   EXPECT_NE(page.find("\nhighbay was simulated with seed 1.\n"), std::string::npos);
+  // The definitions of the loop closure columns and the paper's after-loop figures with their caveats.
+  for (const char* text : {"**VIL + loop** is the loop-closed trajectory (`lidar_final.tum`", "more than 0.3 m or 3°",
+                           "EPnP + ICP (the constraint)\n  / EPnP alone", "hallway FDE to 0.05 %", "tunnel FDE to 0.08 %",
+                           "\"without loop closure being triggered\"", "`--config RUN_YAML`"})
+    EXPECT_NE(page.find(text), std::string::npos) << text;
 }
 
 }  // namespace

@@ -154,6 +154,71 @@ TEST(OdometryTable, RowUsesTheRouteGapAndPassesCounts) {
   EXPECT_THROW(compute_odometry_row(in), std::invalid_argument);
 }
 
+// The true relative pose T_from_to of two instants of a trajectory, perturbed by `error` (right-multiplied).
+LoopToEvaluate loop_between(const Trajectory& gt, int from_s, int to_s, const SE3& error, const SE3& epnp_error) {
+  const SE3 T_true = pose_at(gt, s_to_ns(from_s)).inverse() * pose_at(gt, s_to_ns(to_s));
+  return {s_to_ns(from_s), s_to_ns(to_s), T_true * error, T_true * epnp_error};
+}
+
+TEST(OdometryTable, LoopClosedTrajectoryAndLoopsInTheLidarFrame) {
+  OdometryInputs in;
+  in.preset = "hallway";
+  in.gt_T_W_I = square();
+  // A rotated LiDAR: relative poses in the IMU frame differ from those in the LiDAR frame.
+  const SE3 T_I_L(Quat(Eigen::AngleAxisd(0.4, Vec3::UnitZ()) * Eigen::AngleAxisd(0.2, Vec3::UnitX())), Vec3(0.3, 0, 0.5));
+  for (const TimedPose& p : in.gt_T_W_I) in.gt_T_W_L.push_back({p.t_ns, p.T_W_B * T_I_L});
+  in.vio = {in.gt_T_W_I, ""};
+  in.vil = {drifting(in.gt_T_W_L, Vec3(0.8, 0, 0)), ""};
+  in.lidar_only = {in.gt_T_W_L, ""};
+  in.vil_final = {drifting(in.gt_T_W_L, Vec3(0, 0.05, 0)), ""};
+  const SE3 one_degree(Quat(Eigen::AngleAxisd(M_PI / 180, Vec3::UnitY())), Vec3::Zero());
+  LoopClosureInputs loops;
+  loops.candidates_examined = 7;
+  // A true loop (0.1 m and 1 degree off; EPnP 0.2 m off) and a false one (0.5 m off; EPnP 0.6 m off).
+  loops.accepted.push_back(loop_between(in.gt_T_W_L, 3, 37, SE3(one_degree.quat(), Vec3(0, 0.1, 0)),
+                                        SE3(Quat::Identity(), Vec3(0.2, 0, 0))));
+  loops.accepted.push_back(loop_between(in.gt_T_W_L, 5, 39, SE3(Quat::Identity(), Vec3(0, 0, 0.5)),
+                                        SE3(Quat::Identity(), Vec3(0, 0.6, 0))));
+  in.loops = loops;
+  const OdometryRow row = compute_odometry_row(in);
+
+  EXPECT_NEAR(row.vil.drift_m, 0.8, 1e-12);  // odometry keeps its drift
+  ASSERT_FALSE(row.vil_final.lost) << row.vil_final.lost_reason;
+  EXPECT_EQ(row.vil_final.align, AlignMode::kPosYaw);  // the same rules as VIL
+  EXPECT_NEAR(row.vil_final.drift_m, 0.05, 1e-12);
+  EXPECT_NEAR(row.vil_final.fde_percent, 100 * 0.05 / path_length_m(in.vil_final.poses), 1e-12);
+  EXPECT_GT(row.vil_final.ate_se3_rmse_m, 0.0);
+  EXPECT_LT(row.vil_final.ate_se3_rmse_m, row.vil.ate_se3_rmse_m);
+
+  ASSERT_TRUE(row.loops.has_value());
+  EXPECT_EQ(row.loops->candidates_examined, 7u);
+  const LoopEvaluation& e = row.loops->accepted;
+  ASSERT_EQ(e.loops.size(), 2u);
+  EXPECT_EQ(e.true_loops, 1);
+  EXPECT_EQ(e.false_loops, 1);
+  EXPECT_FALSE(e.loops[0].is_false);
+  EXPECT_TRUE(e.loops[1].is_false);
+  EXPECT_NEAR(e.loops[0].translation_m, 0.1, 1e-9);
+  EXPECT_NEAR(e.loops[0].rotation_deg, 1.0, 1e-9);
+  EXPECT_NEAR(e.median_translation_m, 0.3, 1e-9);     // of 0.1 and 0.5
+  EXPECT_NEAR(e.median_rotation_deg, 0.5, 1e-9);      // of 1 and 0
+  EXPECT_NEAR(e.median_epnp_translation_m, 0.4, 1e-9);  // of 0.2 and 0.6
+  EXPECT_NEAR(e.median_epnp_rotation_deg, 0.0, 1e-9);
+
+  // A failed VIL run: no loop closure result, the loop-closed trajectory is lost with the run's message.
+  in.loops.reset();
+  in.vil_final = {{}, "vocabulary missing"};
+  const OdometryRow failed = compute_odometry_row(in);
+  EXPECT_FALSE(failed.loops.has_value());
+  EXPECT_TRUE(failed.vil_final.lost);
+  EXPECT_NE(failed.vil_final.lost_reason.find("vocabulary missing"), std::string::npos);
+
+  // A loop instant outside the ground truth cannot be evaluated.
+  loops.accepted.push_back({s_to_ns(2), s_to_ns(41), SE3(), std::nullopt});
+  in.loops = loops;
+  EXPECT_THROW(compute_odometry_row(in), std::invalid_argument);
+}
+
 TEST(OdometryTable, PaperValues) {
   EXPECT_DOUBLE_EQ(paper_odometry("highbay")->vil_slam_fde_percent, 0.08);
   EXPECT_DOUBLE_EQ(*paper_odometry("highbay")->loam_fde_percent, 0.56);
@@ -163,6 +228,14 @@ TEST(OdometryTable, PaperValues) {
   EXPECT_FALSE(paper_odometry("tunnel")->loam_fde_percent.has_value());
   EXPECT_DOUBLE_EQ(paper_odometry("tunnel")->length_m, 85);
   EXPECT_FALSE(paper_odometry("room").has_value());
+  // After loop closure: the text of the paper's results section.
+  EXPECT_DOUBLE_EQ(*paper_odometry("hallway")->vil_slam_loop_fde_percent, 0.05);
+  EXPECT_DOUBLE_EQ(*paper_odometry("tunnel")->vil_slam_loop_fde_percent, 0.08);
+  EXPECT_FALSE(paper_odometry("highbay")->vil_slam_loop_fde_percent.has_value());
+  EXPECT_NE(paper_odometry("highbay")->loop_remark.find("closes the loop"), std::string::npos);
+  EXPECT_FALSE(paper_odometry("loop")->vil_slam_loop_fde_percent.has_value());
+  EXPECT_NE(paper_odometry("loop")->loop_remark.find("no loop"), std::string::npos);
+  EXPECT_TRUE(paper_odometry("outdoor")->loop_remark.empty());
 }
 
 }  // namespace
