@@ -94,8 +94,8 @@ void select_in_sector(RingPoints& ring, int begin, int end, const FeatureConfig&
   std::vector<int> edge_candidates, surface_candidates;
   for (int i = begin; i < end; ++i) {
     if (!ring.usable[i]) continue;
-    const float edge_min = std::max(static_cast<float>(config.edge_min_smoothness),
-                                    static_cast<float>(config.edge_noise_sigmas) * noise_smoothness(ring.range[i], config));
+    const float noise_floor = static_cast<float>(config.edge_noise_sigmas) * noise_smoothness(ring.range[i], config);
+    const float edge_min = std::max(static_cast<float>(config.edge_min_smoothness), noise_floor);
     if (ring.smoothness[i] > edge_min) edge_candidates.push_back(i);
     if (ring.smoothness[i] < config.surface_max_smoothness) surface_candidates.push_back(i);
   }
