@@ -1,6 +1,7 @@
 #include "lidar/features.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace vilslam::lidar {
 
@@ -42,6 +43,13 @@ void compute_smoothness(RingPoints& ring, int half_window) {
     ring.smoothness[i] = static_cast<float>(sum.norm() / (2.0 * half_window * ring.range[i]));
     ring.usable[i] = 1;
   }
+}
+
+// Smoothness std that range noise alone gives a point on a plane, at range_m: X_i carries 2w times its
+// noise, each neighbour once, so |sum_j (X_i - X_j)| ~ sqrt(2w (2w + 1)) sigma and c ~ that / (2w r).
+float noise_smoothness(float range_m, const FeatureConfig& config) {
+  const double w2 = 2.0 * config.half_window;
+  return static_cast<float>(std::sqrt(w2 * (w2 + 1.0)) * config.range_noise_sigma_m / (w2 * range_m));
 }
 
 // LOAM Sec. V-A rejections: points on surfaces nearly parallel to the beam (both neighbours far away
@@ -86,7 +94,9 @@ void select_in_sector(RingPoints& ring, int begin, int end, const FeatureConfig&
   std::vector<int> edge_candidates, surface_candidates;
   for (int i = begin; i < end; ++i) {
     if (!ring.usable[i]) continue;
-    if (ring.smoothness[i] > config.edge_min_smoothness) edge_candidates.push_back(i);
+    const float noise_floor = static_cast<float>(config.edge_noise_sigmas) * noise_smoothness(ring.range[i], config);
+    const float edge_min = std::max(static_cast<float>(config.edge_min_smoothness), noise_floor);
+    if (ring.smoothness[i] > edge_min) edge_candidates.push_back(i);
     if (ring.smoothness[i] < config.surface_max_smoothness) surface_candidates.push_back(i);
   }
   const auto sharper = [&](int a, int b) {

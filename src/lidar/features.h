@@ -15,6 +15,11 @@ struct FeatureConfig {
   int max_edges_per_sector = 20;
   int max_surfaces_per_sector = 40;
   double edge_min_smoothness = 0.02;     // LOAM eq. (1), dimensionless: above this a point may be an edge
+  // An edge must also stand out of range noise: c > edge_noise_sigmas x (smoothness std of a noisy plane),
+  // which is ~ range_noise_sigma_m / range (features.cpp); it rejects noise "edges" on walls within ~4 m.
+  // 4 sigmas: below one false edge among the thousands of points of a sweep (two-sided tail 6e-5).
+  double range_noise_sigma_m = 0.02;
+  double edge_noise_sigmas = 4.0;
   double surface_max_smoothness = 0.005; // below this a point may be a surface point
   double occlusion_jump_ratio = 0.1;     // a range jump above this fraction of the range marks an occlusion
   double max_neighbor_gap_ratio = 0.02;  // both neighbour gaps above this fraction of range: beam ~ surface

@@ -41,6 +41,8 @@ YamlFields lidar_yaml_fields(LidarConfig& c) {
                                 yaml_value("max_edges_per_sector", f.max_edges_per_sector),
                                 yaml_value("max_surfaces_per_sector", f.max_surfaces_per_sector),
                                 yaml_value("edge_min_smoothness", f.edge_min_smoothness),
+                                yaml_value("range_noise_sigma_m", f.range_noise_sigma_m),
+                                yaml_value("edge_noise_sigmas", f.edge_noise_sigmas),
                                 yaml_value("surface_max_smoothness", f.surface_max_smoothness),
                                 yaml_value("occlusion_jump_ratio", f.occlusion_jump_ratio),
                                 yaml_value("max_neighbor_gap_ratio", f.max_neighbor_gap_ratio)}),

@@ -9,6 +9,7 @@
 
 #include "common/lie.h"
 #include "common/types.h"
+#include "sim/rng.h"
 
 namespace vilslam::test {
 
@@ -47,9 +48,11 @@ inline double cast(const Scene& scene, const Vec3& o, const Vec3& d) {
   return range;
 }
 
-// One sweep of a VLP-16-like sensor (16 rings, -15..15 deg, azimuth_step_deg) over duration_s from t_ns.
+// One sweep of a VLP-16-like sensor (16 rings, -15..15 deg, azimuth_step_deg) over duration_s from t_ns,
+// with Gaussian range noise of range_noise_m (1 sigma).
 inline LidarScan sweep(const Scene& scene, const std::function<SE3(TimeNs)>& T_W_L, TimeNs t_ns,
-                       double duration_s = 0.1, double azimuth_step_deg = 0.2) {
+                       double duration_s = 0.1, double azimuth_step_deg = 0.2, double range_noise_m = 0.0) {
+  sim::Rng rng(7);
   LidarScan scan;
   scan.t_ns = t_ns;
   const int columns = static_cast<int>(std::lround(360.0 / azimuth_step_deg));
@@ -62,7 +65,7 @@ inline LidarScan sweep(const Scene& scene, const std::function<SE3(TimeNs)>& T_W
       const Vec3 d_L(std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth),
                      std::sin(elevation));
       const Vec3 d_W = T.rotation() * d_L;
-      const double range = cast(scene, T.translation(), d_W);
+      const double range = cast(scene, T.translation(), d_W) + range_noise_m * rng.gaussian();
       const Vec3 p_L = range * d_L;
       LidarPoint p;
       p.x = static_cast<float>(p_L.x());
