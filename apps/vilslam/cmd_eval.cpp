@@ -1,6 +1,7 @@
 // `vilslam eval --est FILE --gt FILE ...`: APE, RPE, the KITTI segment metric and the final drift of an
 // estimated trajectory against ground truth (docs/evaluation.md).
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -10,6 +11,7 @@
 #include "eval/eval_json.h"
 #include "eval/trajectory_eval.h"
 #include "io/trajectory_io.h"
+#include "io/dataset_groundtruth.h"
 #include "vilslam/command.h"
 
 namespace {
@@ -25,6 +27,7 @@ struct Options {
   double delta = 1.0;
   std::string delta_unit = "frames";
   double max_diff_s = 0.01;
+  std::string gt_frame = "imu";
 };
 
 Trajectory load(const std::string& path, const std::string& format, const std::string& fallback_format,
@@ -64,7 +67,11 @@ vilslam::cli::Command reg("eval", "Trajectory errors (APE, RPE, KITTI, final dri
   auto o = std::make_shared<Options>();
   const auto formats = CLI::IsMember({"tum", "kitti", "euroc"});
   app.add_option("--est", o->est_path, "Estimated trajectory")->required();
-  app.add_option("--gt", o->gt_path, "Ground-truth trajectory")->required();
+  app.add_option("--gt", o->gt_path, "Ground-truth trajectory, or a dataset folder (its ground truth in --gt-frame)")
+      ->required();
+  app.add_option("--gt-frame", o->gt_frame, "With a dataset folder as --gt: the body of its ground truth")
+      ->check(CLI::IsMember({"imu", "lidar"}))
+      ->capture_default_str();
   app.add_option("--format", o->format, "Format of both files (default: detected)")->check(formats);
   app.add_option("--est-format", o->est_format, "Format of the estimate")->check(formats);
   app.add_option("--gt-format", o->gt_format, "Format of the ground truth")->check(formats);
@@ -85,7 +92,10 @@ vilslam::cli::Command reg("eval", "Trajectory errors (APE, RPE, KITTI, final dri
   app.add_option("--json", o->json_path, "Also write the results as JSON to this file");
   return [o]() {
     const Trajectory est = load(o->est_path, o->est_format, o->format, o->est_times.empty() ? o->times : o->est_times);
-    const Trajectory gt = load(o->gt_path, o->gt_format, o->format, o->gt_times.empty() ? o->times : o->gt_times);
+    const Trajectory gt =
+        std::filesystem::is_directory(o->gt_path)
+            ? dataset_groundtruth(o->gt_path, o->gt_frame == "lidar" ? GroundTruthFrame::kLidar : GroundTruthFrame::kImu)
+            : load(o->gt_path, o->gt_format, o->format, o->gt_times.empty() ? o->times : o->gt_times);
     eval::TrajectoryEvalConfig config;
     config.align = eval::parse_align_mode(o->align);
     config.align_first_n = o->align_first_n;

@@ -9,7 +9,7 @@
 #include "common/error.h"
 #include "common/json_writer.h"
 #include "eval/loop_eval.h"
-#include "io/dataset.h"
+#include "io/dataset_groundtruth.h"
 #include "io/trajectory_io.h"
 #include "loop/loop_constraints_io.h"
 #include "vilslam/command.h"
@@ -25,12 +25,7 @@ struct Options {
 // A dataset folder: its ground truth moved into the LiDAR frame (T_W_I T_I_L); a file: LiDAR poses.
 Trajectory lidar_ground_truth(const std::string& gt_path) {
   if (!std::filesystem::is_directory(gt_path)) return read_trajectory(gt_path, TrajectoryFormat::kTum);
-  const auto reader = open_dataset(gt_path);
-  if (!reader->calibration().has_lidar) throw InputError(gt_path, "dataset has no LiDAR calibration");
-  Trajectory gt;
-  for (const GroundTruthState& g : reader->groundtruth()) gt.push_back({g.t_ns, g.T_W_I * reader->calibration().T_I_L});
-  if (gt.empty()) throw InputError(gt_path, "dataset has no ground truth");
-  return gt;
+  return dataset_groundtruth(gt_path, GroundTruthFrame::kLidar);
 }
 
 vilslam::cli::Command reg("eval-loops", "Errors of loop constraints (loops.csv) against ground truth, true and false loops",

@@ -1,0 +1,21 @@
+#include "io/dataset_groundtruth.h"
+
+#include "common/error.h"
+#include "io/dataset.h"
+
+namespace vilslam {
+
+Trajectory dataset_groundtruth(const std::string& dataset_path, GroundTruthFrame frame) {
+  const auto reader = open_dataset(dataset_path);
+  const RigCalibration& calib = reader->calibration();
+  if (frame == GroundTruthFrame::kLidar && !calib.has_lidar) {
+    throw InputError(dataset_path, "dataset has no LiDAR calibration for a LiDAR-frame ground truth");
+  }
+  const SE3 T_I_B = frame == GroundTruthFrame::kLidar ? calib.T_I_L : SE3();
+  Trajectory gt;
+  for (const GroundTruthState& g : reader->groundtruth()) gt.push_back({g.t_ns, g.T_W_I * T_I_B});
+  if (gt.empty()) throw InputError(dataset_path, "dataset has no ground truth");
+  return gt;
+}
+
+}  // namespace vilslam

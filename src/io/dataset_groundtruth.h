@@ -1,0 +1,15 @@
+#pragma once
+// A dataset's ground truth as a trajectory of the IMU body (T_W_I) or of the LiDAR (T_W_I T_I_L, with the
+// rig's extrinsic), for comparing LiDAR poses (`vilslam eval --gt DATASET --gt-frame lidar`, `eval-loops`).
+#include <string>
+
+#include "common/types.h"
+
+namespace vilslam {
+
+enum class GroundTruthFrame { kImu, kLidar };
+
+// Throws InputError naming the dataset when it has no ground truth, or no LiDAR calibration for kLidar.
+Trajectory dataset_groundtruth(const std::string& dataset_path, GroundTruthFrame frame);
+
+}  // namespace vilslam
