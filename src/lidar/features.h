@@ -18,6 +18,8 @@ struct FeatureConfig {
   // An edge must also stand out of range noise: c > edge_noise_sigmas x (smoothness std of a noisy plane),
   // which is ~ range_noise_sigma_m / range (features.cpp); it rejects noise "edges" on walls within ~4 m.
   // 4 sigmas: below one false edge among the thousands of points of a sweep (two-sided tail 6e-5).
+  // 2 cm: the order of the VLP-16 datasheet's "+-3 cm typical" range accuracy (also the simulator's default
+  // noise; the value comes from the sensor's data sheet, not from the generator).
   double range_noise_sigma_m = 0.02;
   double edge_noise_sigmas = 4.0;
   double surface_max_smoothness = 0.005; // below this a point may be a surface point

@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "eval/loop_eval.h"
-#include "io/dataset.h"
+#include "io/dataset_groundtruth.h"
 #include "io/trajectory_io.h"
 #include "loop/loop_constraints_io.h"
 #include "test_util.h"
@@ -45,12 +45,6 @@ class LoopClosureRun : public ::testing::Test {
     delete data_;
     delete runs_;
   }
-  static Trajectory gt_lidar() {
-    const auto reader = open_dataset(data_->string());
-    Trajectory gt;
-    for (const GroundTruthState& g : reader->groundtruth()) gt.push_back({g.t_ns, g.T_W_I * reader->calibration().T_I_L});
-    return gt;
-  }
   static Trajectory read(const std::string& run, const std::string& file) {
     return read_trajectory((*runs_ / run / file).string(), TrajectoryFormat::kTum);
   }
@@ -68,7 +62,7 @@ TEST_F(LoopClosureRun, DetectsTheReturnWithTrueConstraints) {
     loops.push_back({r.from_t_ns, r.to_t_ns, r.T_from_to, r.T_from_to_epnp});
     EXPECT_GE(r.to_t_ns - r.from_t_ns, 4'000'000'000) << "candidate younger than the time gap";
   }
-  const eval::LoopEvaluation e = eval::evaluate_loops(loops, gt_lidar());
+  const eval::LoopEvaluation e = eval::evaluate_loops(loops, dataset_groundtruth(data_->string(), GroundTruthFrame::kLidar));
   EXPECT_EQ(e.false_loops, 0);
   for (const eval::LoopError& l : e.loops) {
     EXPECT_LT(l.translation_m, 0.05);
