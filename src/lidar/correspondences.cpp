@@ -31,12 +31,13 @@ std::optional<Line> fit_line(const std::vector<Vec3>& points, double min_eigen_r
   return Line{s.mean, s.eigen.eigenvectors().col(2).normalized()};
 }
 
-std::optional<Plane> fit_plane(const std::vector<Vec3>& points, double max_distance_m) {
+std::optional<Plane> fit_plane(const std::vector<Vec3>& points, double max_distance_m, double min_spread_ratio) {
   if (points.size() < 3) return std::nullopt;
   const Scatter s = scatter_of(points);
   const Vec3 normal = s.eigen.eigenvectors().col(0).normalized();
-  // Three or more nearly collinear points leave the normal undetermined.
-  if (!(s.eigen.eigenvalues()(1) > 1e-9)) return std::nullopt;
+  // Nearly collinear points leave the normal undetermined.
+  const Vec3 lambda = s.eigen.eigenvalues();
+  if (!(lambda(1) > 1e-9) || lambda(1) < min_spread_ratio * lambda(2)) return std::nullopt;
   const Plane plane{normal, -normal.dot(s.mean)};
   for (const Vec3& p : points) {
     if (std::abs(plane.normal.dot(p) + plane.offset_m) > max_distance_m) return std::nullopt;
@@ -58,7 +59,7 @@ std::optional<PlaneCorrespondence> associate_plane(const Vec3& p_L, const Vec3& 
   const std::vector<Vec3> neighbors =
       surface_map.nearest(p_W, config.num_neighbors, config.max_neighbor_distance_m);
   if (static_cast<int>(neighbors.size()) < config.num_neighbors) return std::nullopt;
-  const std::optional<Plane> plane = fit_plane(neighbors, config.max_plane_point_distance_m);
+  const std::optional<Plane> plane = fit_plane(neighbors, config.max_plane_point_distance_m, config.min_plane_spread_ratio);
   if (!plane) return std::nullopt;
   return PlaneCorrespondence{p_L, plane->normal, plane->offset_m};
 }

@@ -14,6 +14,9 @@ struct AssociationConfig {
   double max_neighbor_distance_m = 1.0;
   double min_line_eigen_ratio = 3.0;          // largest / second eigenvalue of the neighbours' scatter
   double max_plane_point_distance_m = 0.2;    // every neighbour within this of the fitted plane
+  // Second / largest eigenvalue of the neighbours' scatter a plane needs: neighbours along one ring (a line
+  // with range noise across it) leave the plane's tilt about that line to the noise.
+  double min_plane_spread_ratio = 0.0;
 };
 
 struct Line {
@@ -29,7 +32,7 @@ struct Plane {
 // Principal axis of the points when its eigenvalue dominates the second one by min_eigen_ratio.
 std::optional<Line> fit_line(const std::vector<Vec3>& points, double min_eigen_ratio);
 // Least-squares plane (smallest scatter eigenvector) when every point lies within max_distance_m of it.
-std::optional<Plane> fit_plane(const std::vector<Vec3>& points, double max_distance_m);
+std::optional<Plane> fit_plane(const std::vector<Vec3>& points, double max_distance_m, double min_spread_ratio);
 
 // Correspondence of feature p_L (seen at p_W = T_W_L p_L) with the map, or nothing when the neighbours
 // are too few, too far, or not line-like / not planar.

@@ -60,7 +60,8 @@ YamlFields lidar_yaml_fields(LidarConfig& c) {
                     yaml_value("num_neighbors", a.num_neighbors),
                     yaml_value("max_neighbor_distance_m", a.max_neighbor_distance_m),
                     yaml_value("min_line_eigen_ratio", a.min_line_eigen_ratio),
-                    yaml_value("max_plane_point_distance_m", a.max_plane_point_distance_m)}),
+                    yaml_value("max_plane_point_distance_m", a.max_plane_point_distance_m),
+                    yaml_value("min_plane_spread_ratio", a.min_plane_spread_ratio)}),
   };
 }
 

@@ -68,7 +68,8 @@ void LidarMapper::relocalize(const SE3& T_W_L_last, const std::vector<PosedFeatu
   map_ = build_feature_map(config_.lidar.map, scans, T_W_L_last.translation());
 }
 
-LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior) {
+LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior,
+                                        const std::function<SE3(TimeNs)>& T_O_I_dewarp) {
   const auto start = std::chrono::steady_clock::now();
   if (scan.points.empty()) throw InputError("lidar scan", "empty scan at t_ns " + std::to_string(scan.t_ns));
   const TimeNs end_t_ns = scan.end_t_ns();
@@ -91,7 +92,9 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
     }
   }
   const bool constant_velocity_known = previous_ && previous_->motion.has_value();
-  if (config_.dewarp && has_prior) {
+  if (config_.dewarp && has_prior && T_O_I_dewarp) {
+    features = dewarp(features, end_t_ns, [&](TimeNs t_ns) { return T_O_I_dewarp(t_ns) * T_I_L_; });
+  } else if (config_.dewarp && has_prior) {
     features = dewarp(features, end_t_ns, prior_T_W_L);
   } else if (config_.dewarp && constant_velocity_known) {
     features = dewarp(features, end_t_ns,

@@ -43,8 +43,11 @@ class LidarMapper {
   LidarMapper(const LidarMapperConfig& config, const SE3& T_I_L);
 
   // T_W_I_prior: IMU-rate VIO pose at any time covering [scan.t_ns, scan end]; an empty function gives
-  // LiDAR-only mapping. Throws InputError on an empty scan or a scan ending before the previous one.
-  LidarMappingResult process(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior);
+  // LiDAR-only mapping. T_O_I_dewarp: when given, the sweep is dewarped with its relative poses instead
+  // (the VIO's jump-free IMU motion, vio/vio.h); T_W_I_prior still gives the motion between sweeps.
+  // Throws InputError on an empty scan or a scan ending before the previous one.
+  LidarMappingResult process(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior,
+                             const std::function<SE3(TimeNs)>& T_O_I_dewarp = {});
 
   const FeatureMap& map() const { return map_; }
   // The last sweep's features as registered: dewarped to its end, in its LiDAR frame.

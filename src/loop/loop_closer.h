@@ -42,10 +42,15 @@ struct LoopClosureConfig {
   // key scan (or a few) keeps its features at this spacing and the query's at this voxel leaf.
   double icp_map_point_spacing_m = 0.05;
   double icp_source_leaf_m = 0.1;
+  // A single key scan is sparse across rings: planes need neighbours spread over two axes (second / largest
+  // scatter eigenvalue, lidar::AssociationConfig::min_plane_spread_ratio), and the loss is tighter than
+  // LiDAR mapping's. Measured in docs/loop.md ("ICP accuracy").
+  double icp_min_plane_spread_ratio = 0.1;
+  double icp_loss_scale_m = 0.05;
   double icp_min_matched_fraction = 0.4;  // query features that found a line or plane in the map
   double icp_min_inlier_fraction = 0.5;   // matched features within the loss scale of their line or plane
   double icp_max_rms_m = 0.3;             // over all matched features (non-overlapping parts included)
-  double icp_min_eigenvalue_per_match = 0.03;  // no degenerate direction (lidar/degeneracy.h)
+  double icp_min_eigenvalue_per_match = 0.01;  // no degenerate direction (lidar/degeneracy.h), robust-weighted
   // Consistency: EPnP vs ICP, and the loop vs the odometry's prediction of the same relative pose.
   double max_epnp_icp_translation_m = 0.3;
   double max_epnp_icp_rotation_rad = 0.0524;   // 3 degrees
@@ -93,7 +98,7 @@ struct LoopCandidateRecord {
 class LoopCloser {
  public:
   // lidar: the run's LiDAR settings; the loop ICP uses its registration and feature map settings but for
-  // icp_map_point_spacing_m and icp_source_leaf_m. Throws InputError for an invalid config and
+  // icp_map_point_spacing_m, icp_source_leaf_m, icp_min_plane_spread_ratio and icp_loss_scale_m. Throws InputError for an invalid config and
   // std::invalid_argument without a vocabulary.
   LoopCloser(const LoopClosureConfig& config, const lidar::LidarConfig& lidar,
              std::shared_ptr<const Vocabulary> vocabulary);

@@ -27,6 +27,8 @@ YamlFields loop_closure_yaml_fields(LoopClosureConfig& c) {
       yaml_value("submap_half_width", c.submap_half_width),
       yaml_value("icp_map_point_spacing_m", c.icp_map_point_spacing_m),
       yaml_value("icp_source_leaf_m", c.icp_source_leaf_m),
+      yaml_value("icp_min_plane_spread_ratio", c.icp_min_plane_spread_ratio),
+      yaml_value("icp_loss_scale_m", c.icp_loss_scale_m),
       yaml_value("icp_min_matched_fraction", c.icp_min_matched_fraction),
       yaml_value("icp_min_inlier_fraction", c.icp_min_inlier_fraction),
       yaml_value("icp_max_rms_m", c.icp_max_rms_m),
@@ -67,6 +69,9 @@ void validate_loop_closure_config(const LoopClosureConfig& c, const std::string&
   require(c.icp_max_rms_m > 0, "icp_max_rms_m must be positive");
   require(c.icp_map_point_spacing_m > 0 && c.icp_source_leaf_m > 0,
           "icp_map_point_spacing_m and icp_source_leaf_m must be positive");
+  require(c.icp_min_plane_spread_ratio >= 0 && c.icp_min_plane_spread_ratio <= 1,
+          "icp_min_plane_spread_ratio must be in [0, 1]");
+  require(c.icp_loss_scale_m > 0, "icp_loss_scale_m must be positive");
   require(c.icp_min_eigenvalue_per_match >= 0, "icp_min_eigenvalue_per_match must not be negative");
   require(c.max_epnp_icp_translation_m > 0 && c.max_epnp_icp_rotation_rad > 0,
           "max_epnp_icp_translation_m and max_epnp_icp_rotation_rad must be positive");

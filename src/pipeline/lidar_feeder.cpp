@@ -3,15 +3,15 @@
 namespace vilslam {
 
 LidarFeeder::LidarFeeder(const lidar::LidarMapperConfig& config, const RigCalibration& calib,
-                         const Trajectory* imu_poses, std::vector<lidar::LidarMappingResult>* results,
-                         LoopClosureModule* loop)
-    : mapper_(config, calib.T_I_L), offset_ns_(calib.lidar_time_offset_ns), imu_poses_(imu_poses), results_(results),
-      loop_(loop) {}
+                         const Trajectory* imu_poses, const Trajectory* imu_motion,
+                         std::vector<lidar::LidarMappingResult>* results, LoopClosureModule* loop)
+    : mapper_(config, calib.T_I_L), offset_ns_(calib.lidar_time_offset_ns), imu_poses_(imu_poses),
+      imu_motion_(imu_motion), results_(results), loop_(loop) {}
 
 void LidarFeeder::scan(LidarScan scan) {
   scan.t_ns += offset_ns_;
   if (!imu_poses_) {
-    map(scan, {});
+    map(scan, {}, {});
     return;
   }
   waiting_.push_back(std::move(scan));
@@ -24,20 +24,23 @@ void LidarFeeder::poses_advanced() {
     if (scan.t_ns < imu_poses_->front().t_ns) {
       ++unmapped_;  // the VIO was not initialized yet at the sweep's start
     } else {
-      map(scan, [this](TimeNs t_ns) { return pose_at(*imu_poses_, t_ns); });
+      std::function<SE3(TimeNs)> T_O_I;
+      if (imu_motion_) T_O_I = [this](TimeNs t_ns) { return pose_at(*imu_motion_, t_ns); };
+      map(scan, [this](TimeNs t_ns) { return pose_at(*imu_poses_, t_ns); }, T_O_I);
     }
     waiting_.pop_front();
   }
 }
 
-void LidarFeeder::map(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior) {
+void LidarFeeder::map(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior,
+                      const std::function<SE3(TimeNs)>& T_O_I_dewarp) {
   // A loop correction that arrived since the last sweep comes first (paper, "Re-localization").
   if (loop_) {
     if (const auto correction = loop_->take_correction()) {
       mapper_.relocalize(correction->T_W_L_last, correction->key_scans);
     }
   }
-  results_->push_back(mapper_.process(scan, T_W_I_prior));
+  results_->push_back(mapper_.process(scan, T_W_I_prior, T_O_I_dewarp));
   if (loop_) loop_->scan_mapped(results_->back(), mapper_.last_features());
 }
 

@@ -16,10 +16,12 @@ namespace vilslam {
 
 class LidarFeeder {
  public:
-  // imu_poses: the VIO's IMU-rate poses as they grow (vil), or nullptr for LiDAR-only mapping.
+  // imu_poses: the VIO's IMU-rate poses as they grow (vil), or nullptr for LiDAR-only mapping; imu_motion:
+  // the same samples' jump-free poses T_O_I (vio/vio.h), which dewarp the sweeps, or nullptr.
   // loop: the loop closure module, or nullptr.
   LidarFeeder(const lidar::LidarMapperConfig& config, const RigCalibration& calib, const Trajectory* imu_poses,
-              std::vector<lidar::LidarMappingResult>* results, LoopClosureModule* loop = nullptr);
+              const Trajectory* imu_motion, std::vector<lidar::LidarMappingResult>* results,
+              LoopClosureModule* loop = nullptr);
 
   void scan(LidarScan scan);
   // Maps the waiting sweeps that the IMU-rate poses now cover.
@@ -28,11 +30,13 @@ class LidarFeeder {
   std::size_t unmapped_scans() const { return unmapped_ + waiting_.size(); }
 
  private:
-  void map(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior);
+  void map(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior,
+           const std::function<SE3(TimeNs)>& T_O_I_dewarp);
 
   lidar::LidarMapper mapper_;
   TimeNs offset_ns_;
   const Trajectory* imu_poses_;
+  const Trajectory* imu_motion_;
   std::vector<lidar::LidarMappingResult>* results_;
   LoopClosureModule* loop_;
   std::deque<LidarScan> waiting_;

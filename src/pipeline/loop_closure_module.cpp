@@ -19,9 +19,9 @@ LoopClosureModule::LoopClosureModule(const loop::LoopClosureConfig& config,
                                      const loop::GlobalPoseGraphConfig& graph_config,
                                      std::shared_ptr<const Vocabulary> vocabulary, const RigCalibration& calib,
                                      const FrontendConfig& frontend_config, const lidar::LidarConfig& lidar,
-                                     const Trajectory* imu_poses)
+                                     const Trajectory* imu_motion)
     : config_(config), vocabulary_(std::move(vocabulary)), calib_(calib), rig_(make_stereo_rig(calib)),
-      frontend_config_(frontend_config), imu_poses_(imu_poses), map_radius_m_(lidar.map.edges.max_distance_m),
+      frontend_config_(frontend_config), imu_motion_(imu_motion), map_radius_m_(lidar.map.edges.max_distance_m),
       graph_(graph_config) {
   if (config_.enabled) closer_.emplace(config_, lidar, vocabulary_);
 }
@@ -54,11 +54,11 @@ const StereoFrame* LoopClosureModule::key_image_for(TimeNs scan_t_ns) const {
 }
 
 void LoopClosureModule::add_key_frame(const PendingKeyScan& scan, const StereoFrame& frame) {
-  const Trajectory& poses = *imu_poses_;
+  const Trajectory& poses = *imu_motion_;
   if (poses.size() < 2 || frame.t_ns < poses.front().t_ns) return;
   // The key image's camera in the key scan's frame, through the VIO motion between the two instants. The
   // IMU-rate poses reach the sweep's end; an image up to the gap after it extrapolates their last step.
-  const auto T_W_I_at = [&poses](TimeNs t_ns) {
+  const auto T_O_I_at = [&poses](TimeNs t_ns) {
     if (t_ns <= poses.back().t_ns) return pose_at(poses, t_ns);
     const TimedPose& a = poses[poses.size() - 2];
     const TimedPose& b = poses.back();
@@ -68,7 +68,7 @@ void LoopClosureModule::add_key_frame(const PendingKeyScan& scan, const StereoFr
   loop::KeyFrame key_frame;
   key_frame.pose_index = scan.pose_index;
   key_frame.scan_t_ns = scan.scan_t_ns;
-  key_frame.T_L_C0 = (T_W_I_at(scan.scan_t_ns) * calib_.T_I_L).inverse() * T_W_I_at(frame.t_ns) * calib_.T_I_C0;
+  key_frame.T_L_C0 = (T_O_I_at(scan.scan_t_ns) * calib_.T_I_L).inverse() * T_O_I_at(frame.t_ns) * calib_.T_I_C0;
   key_frame.image = loop::make_key_image(frame, rig_, frontend_config_, *vocabulary_);
   key_frame.features_L = scan.features_L;
   out_.key_frame_ms.push_back(elapsed_ms(start));

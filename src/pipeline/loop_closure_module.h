@@ -42,12 +42,12 @@ struct MapCorrection {
 class LoopClosureModule {
  public:
   // lidar: the run's LiDAR settings (the loop ICP's registration; the map radius of corrections).
-  // imu_poses: the VIO's IMU-rate poses (they give the motion between a key image and its key scan).
+  // imu_motion: the VIO's jump-free IMU-rate poses T_O_I (the motion between a key image and its key scan).
   // With loop closure disabled it only records the odometry (lidar_global = lidar_final = lidar_odometry).
   LoopClosureModule(const loop::LoopClosureConfig& config, const loop::GlobalPoseGraphConfig& graph_config,
                     std::shared_ptr<const Vocabulary> vocabulary, const RigCalibration& calib,
                     const FrontendConfig& frontend_config, const lidar::LidarConfig& lidar,
-                    const Trajectory* imu_poses);
+                    const Trajectory* imu_motion);
 
   // A stereo pair, its time already on the IMU clock. Completes a key frame waiting for its key image.
   void stereo(const StereoFrame& frame);
@@ -77,7 +77,7 @@ class LoopClosureModule {
   RigCalibration calib_;
   StereoRig rig_;
   FrontendConfig frontend_config_;
-  const Trajectory* imu_poses_;
+  const Trajectory* imu_motion_;
   double map_radius_m_;
   std::optional<loop::LoopCloser> closer_;
   loop::GlobalPoseGraph graph_;

@@ -26,7 +26,10 @@ class VioFeeder {
       : frontend_(calib, config.frontend), vio_(calib, config.vio), result_(result),
         cam_offset_ns_(calib.cam_time_offset_ns) {
     vio_.on_state([this](const VioStateOutput& s) { result_->camera_states.push_back({s.state.t_ns, s.state.T_W_I()}); });
-    vio_.on_imu_pose([this](const VioImuOutput& p) { result_->imu_poses.push_back({p.t_ns, p.T_W_I}); });
+    vio_.on_imu_pose([this](const VioImuOutput& p) {
+      result_->imu_poses.push_back({p.t_ns, p.T_W_I});
+      result_->imu_motion.push_back({p.t_ns, p.T_O_I});
+    });
   }
 
   void imu(const ImuSample& sample) {
@@ -110,11 +113,12 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
     if (config.loop.enabled) vocabulary = std::make_shared<const Vocabulary>(Vocabulary::load(
           config.vocabulary == "default" ? default_vocabulary_path() : config.vocabulary));
     loop.emplace(config.loop, config.graph, vocabulary, reader.calibration(), config.frontend, config.lidar.lidar,
-                 &result.imu_poses);
+                 &result.imu_motion);
   }
   std::optional<LidarFeeder> lidar;
   if (config.mode != RunMode::kVio) {
-    lidar.emplace(config.lidar, reader.calibration(), vio ? &result.imu_poses : nullptr, &result.lidar,
+    lidar.emplace(config.lidar, reader.calibration(), vio ? &result.imu_poses : nullptr,
+                  vio ? &result.imu_motion : nullptr, &result.lidar,
                   loop ? &*loop : nullptr);
   }
   const TimeNs cam_offset_ns = reader.calibration().cam_time_offset_ns;

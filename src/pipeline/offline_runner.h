@@ -41,6 +41,7 @@ struct OfflineRunConfig {
 struct OfflineRunResult {
   Trajectory camera_states;  // T_W_I of every optimized stereo-frame state (IMU clock)
   Trajectory imu_poses;      // T_W_I propagated at every IMU sample after initialization
+  Trajectory imu_motion;     // T_O_I at the same samples: the same motion without re-anchoring jumps
   std::vector<int> matches_per_frame;
   std::vector<double> frontend_ms;  // per stereo frame
   std::vector<double> smoother_ms;  // per stereo frame (Vio::add_frame)

@@ -34,6 +34,17 @@ NavState Propagator::add(const ImuSample& sample) {
   return current();
 }
 
+NavState Propagator::state_at(TimeNs t_ns) const {
+  if (!preint_) throw std::logic_error("Propagator::state_at before reset");
+  if (t_ns < last_t_ns_) throw std::invalid_argument("Propagator::state_at: before the last integrated time");
+  if (t_ns == last_t_ns_ || !last_) return current();
+  Preintegration preint = *preint_;
+  integrate_samples({*last_}, last_t_ns_, t_ns, preint);
+  NavState x = predict_state(preint, anchor_, gravity_W_);
+  x.t_ns = t_ns;
+  return x;
+}
+
 NavState Propagator::current() const {
   if (!preint_) throw std::logic_error("Propagator::current before reset");
   NavState x = predict_state(*preint_, anchor_, gravity_W_);

@@ -21,6 +21,8 @@ class Propagator {
   NavState add(const ImuSample& sample);
   // The state at the last integrated time (the anchor itself before any sample).
   NavState current() const;
+  // The state at t_ns, not before the last integrated time, the last sample held after it.
+  NavState state_at(TimeNs t_ns) const;
 
  private:
   ImuNoise noise_;

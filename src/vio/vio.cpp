@@ -36,7 +36,7 @@ void Vio::add_imu(const ImuSample& sample) {
   imu_.push_back(sample);
   if (!initialized() || sample.t_ns <= smoother_.newest().t_ns) return;
   const NavState x = propagator_.add(sample);
-  latest_imu_ = VioImuOutput{x.t_ns, x.T_W_I(), x.v_W_m_s};
+  latest_imu_ = VioImuOutput{x.t_ns, x.T_W_I(), x.v_W_m_s, T_O_W_ * x.T_W_I()};
   if (on_imu_) on_imu_(*latest_imu_);
 }
 
@@ -45,6 +45,8 @@ void Vio::add_frame(const FrontendOutput& frame) {
     throw InputError(kSource, "frame at t_ns " + std::to_string(frame.t_ns) + " is not after the previous one");
   }
   if (imu_.empty() || imu_.front().t_ns > frame.t_ns) return;
+  std::optional<TimeNs> join_t_ns;  // where the old and the new propagation are joined in O
+  std::optional<SE3> T_W_I_old;
   if (!initialized()) {
     const Initialization init = static_initialization(imu_, frame.t_ns, config_.initializer);
     Vec15 sigma;
@@ -53,6 +55,8 @@ void Vio::add_frame(const FrontendOutput& frame) {
         Vec3::Constant(config_.prior_gyro_bias_sigma_rad_s), Vec3::Constant(config_.prior_accel_bias_sigma_m_s2);
     smoother_.initialize(init.state, sigma, frame);
   } else {
+    join_t_ns = std::max(propagator_.current().t_ns, frame.t_ns);
+    T_W_I_old = propagator_.state_at(*join_t_ns).T_W_I();
     const NavState& x = smoother_.newest();
     Preintegration preint(x.bias_gyro_rad_s, x.bias_accel_m_s2, calib_.imu);
     integrate_samples(imu_, x.t_ns, frame.t_ns, preint);
@@ -64,6 +68,10 @@ void Vio::add_frame(const FrontendOutput& frame) {
                                             [](TimeNs t, const ImuSample& s) { return t < s.t_ns; });
   imu_.erase(imu_.begin(), first_after == imu_.begin() ? first_after : first_after - 1);
   propagator_.reset(smoother_.newest(), imu_);
+  if (T_W_I_old) {
+    // O stays continuous: the new propagation at the join time maps to where the old one was.
+    T_O_W_ = T_O_W_ * *T_W_I_old * propagator_.state_at(*join_t_ns).T_W_I().inverse();
+  }
   publish_state();
 }
 

@@ -36,11 +36,14 @@ struct VioStateOutput {
   int landmarks = 0;
 };
 
-// Propagated state at an IMU sample.
+// Propagated state at an IMU sample. T_W_I jumps where a new optimized state re-anchors the propagation;
+// T_O_I is the same motion without those jumps, in a frame O that drifts from W: over a LiDAR sweep its
+// relative poses are the IMU's motion alone (what dewarping needs), never a smoother correction.
 struct VioImuOutput {
   TimeNs t_ns = 0;
   SE3 T_W_I;
   Vec3 v_W_m_s = Vec3::Zero();
+  SE3 T_O_I;
 };
 
 class Vio {
@@ -72,6 +75,7 @@ class Vio {
   std::vector<ImuSample> imu_;  // samples from just before the newest state on
   std::optional<VioStateOutput> latest_state_;
   std::optional<VioImuOutput> latest_imu_;
+  SE3 T_O_W_;  // the jump-free frame O of VioImuOutput::T_O_I
   std::function<void(const VioStateOutput&)> on_state_;
   std::function<void(const VioImuOutput&)> on_imu_;
 };

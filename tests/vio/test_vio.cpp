@@ -21,43 +21,56 @@ RigCalibration test_calibration() {
   return calib;
 }
 
-TEST(Vio, InitializesStaticAndTracksTheMotion) {
-  test::AnalyticMotion motion;
-  motion.rest_s = 1.0;
+// Static initialization, then 4 s of the analytic motion with noisy, biased IMU and 10 Hz stereo frames.
+struct AnalyticFlight {
+  std::vector<VioStateOutput> states;
+  std::vector<VioImuOutput> imu_poses;
+  double max_frame_error = 0, max_imu_error = 0;
+  Vec3 bg = Vec3::Zero();
+};
+
+AnalyticFlight fly_analytic_motion(const test::AnalyticMotion& motion) {
   const RigCalibration calib = test_calibration();
   const StereoExtrinsics extr{calib.T_I_C0, calib.T_I_C1};
   const std::vector<Vec3> landmarks = test::test_landmarks(400, 9);
   std::mt19937 rng(9);
   std::normal_distribution<double> gauss(0.0, 1.0);
-  const Vec3 bg(0.004, -0.003, 0.002), ba(0.01, -0.01, 0.02);
+  AnalyticFlight f;
+  f.bg = Vec3(0.004, -0.003, 0.002);
+  const Vec3 ba(0.01, -0.01, 0.02);
   const double imu_dt = 1.0 / calib.imu.rate_hz;
   const double sigma_norm = 0.5 / 450.0;
 
   Vio vio(calib);
-  std::vector<VioStateOutput> states;
-  std::vector<VioImuOutput> imu_poses;
-  vio.on_state([&](const VioStateOutput& s) { states.push_back(s); });
-  vio.on_imu_pose([&](const VioImuOutput& p) { imu_poses.push_back(p); });
+  vio.on_state([&](const VioStateOutput& s) { f.states.push_back(s); });
+  vio.on_imu_pose([&](const VioImuOutput& p) { f.imu_poses.push_back(p); });
 
   const int imu_per_frame = 20;  // 10 Hz frames at 200 Hz IMU
-  double max_frame_error = 0, max_imu_error = 0;
   for (int k = 0; k <= 5 * 200; ++k) {
     const double t = k * imu_dt;
     ImuSample s = motion.imu(t);
-    s.gyro_rad_s += bg + Vec3(gauss(rng), gauss(rng), gauss(rng)) * calib.imu.gyro_noise_density / std::sqrt(imu_dt);
+    s.gyro_rad_s += f.bg + Vec3(gauss(rng), gauss(rng), gauss(rng)) * calib.imu.gyro_noise_density / std::sqrt(imu_dt);
     s.accel_m_s2 += ba + Vec3(gauss(rng), gauss(rng), gauss(rng)) * calib.imu.accel_noise_density / std::sqrt(imu_dt);
     vio.add_imu(s);
     if (vio.latest_imu_pose() && vio.latest_imu_pose()->t_ns == s.t_ns) {
-      max_imu_error = std::max(max_imu_error, (vio.latest_imu_pose()->T_W_I.translation() - motion.state(t).p_W_I).norm());
+      f.max_imu_error = std::max(f.max_imu_error, (vio.latest_imu_pose()->T_W_I.translation() - motion.state(t).p_W_I).norm());
     }
     if (k >= 200 && k % imu_per_frame == 0) {  // frames from the end of the rest on
       vio.add_frame(test::observe(motion.state(t), landmarks, extr, sigma_norm, rng));
-      ASSERT_TRUE(vio.latest_state().has_value());
+      EXPECT_TRUE(vio.latest_state().has_value());
       const NavState& est = vio.latest_state()->state;
       EXPECT_EQ(est.t_ns, s.t_ns);
-      max_frame_error = std::max(max_frame_error, (est.p_W_I - motion.state(t).p_W_I).norm());
+      f.max_frame_error = std::max(f.max_frame_error, (est.p_W_I - motion.state(t).p_W_I).norm());
     }
   }
+  return f;
+}
+
+TEST(Vio, InitializesStaticAndTracksTheMotion) {
+  test::AnalyticMotion motion;
+  motion.rest_s = 1.0;
+  const AnalyticFlight f = fly_analytic_motion(motion);
+  const auto& [states, imu_poses, max_frame_error, max_imu_error, bg] = f;
   std::printf("static init + 4 s of motion: %zu states, %zu IMU-rate poses, max error %.4f m (frames), %.4f m (IMU rate)\n",
               states.size(), imu_poses.size(), max_frame_error, max_imu_error);
   EXPECT_EQ(states.size(), 41u);
@@ -68,6 +81,30 @@ TEST(Vio, InitializesStaticAndTracksTheMotion) {
   EXPECT_LT((states.back().state.bias_gyro_rad_s - bg).norm(), 2e-3);
   const Eigen::SelfAdjointEigenSolver<Mat15> eig(states.back().covariance);
   EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
+}
+
+// T_W_I jumps where each new state re-anchors the propagation; T_O_I must follow the true motion from
+// sample to sample without those jumps (LiDAR sweeps are dewarped with it).
+TEST(Vio, JumpFreeImuMotionFollowsTheTrueMotion) {
+  test::AnalyticMotion motion;
+  motion.rest_s = 1.0;
+  const AnalyticFlight f = fly_analytic_motion(motion);
+  ASSERT_GT(f.imu_poses.size(), 100u);
+  const auto rotation_error_deg = [&](const SE3& a, const SE3& b, TimeNs ta, TimeNs tb) {
+    const Mat3 R_true = motion.state(ns_to_s(ta)).R_W_I.transpose() * motion.state(ns_to_s(tb)).R_W_I;
+    const Mat3 R_est = (a.inverse() * b).rotation();
+    return Eigen::AngleAxisd(R_true.transpose() * R_est).angle() * 180.0 / M_PI;
+  };
+  double max_jump_W = 0, max_jump_O = 0;
+  for (std::size_t i = 1; i < f.imu_poses.size(); ++i) {
+    const VioImuOutput& a = f.imu_poses[i - 1];
+    const VioImuOutput& b = f.imu_poses[i];
+    max_jump_W = std::max(max_jump_W, rotation_error_deg(a.T_W_I, b.T_W_I, a.t_ns, b.t_ns));
+    max_jump_O = std::max(max_jump_O, rotation_error_deg(a.T_O_I, b.T_O_I, a.t_ns, b.t_ns));
+  }
+  std::printf("largest sample-to-sample rotation error: %.5f deg (T_W_I), %.5f deg (T_O_I)\n", max_jump_W, max_jump_O);
+  EXPECT_LT(max_jump_O, 0.2 * max_jump_W);
+  EXPECT_LT(max_jump_O, 0.01);
 }
 
 // Started while moving: the averaged specific force includes the acceleration and the velocity is unknown;
