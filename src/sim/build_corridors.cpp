@@ -25,7 +25,8 @@ void build_hallway(SceneBuilder& builder, double length_m) {
   style.poster = builder.material(K::kPoster, 0.5f, 0.6f);
   style.sign = builder.material(K::kPoster, 0.6f, 0.7f);
   style.light = builder.material(K::kPlain, 0.97f, 0.0f);
-  style.decals_per_10m = 2.0;
+  // An office corridor: a door, poster or sign every ~3 m of each wall (the plain paint stays plain).
+  style.decals_per_10m = 6.0;
 
   // A rectilinear loop with corner notches (several turns), scaled so the rounded route has length_m.
   const double radius = 1.5;
@@ -34,7 +35,9 @@ void build_hallway(SceneBuilder& builder, double length_m) {
   Polygon2 loop = rectilinear_loop(rng, aspect, 1.0, length_m >= 80 ? 2 : 0, 0.22);
   scale_to_length(&loop, radius, length_m);
   add_corridor(builder, loop, true, style);
-  builder.set_route(rounded_loop(loop, radius, kRouteStep, kSensorHeight));
+  // The route starts and ends mid-way along the longest corridor (the walls keep the plain loop), so the
+  // return approaches the start down that corridor, as in the paper's run, not at a corner facing a wall.
+  builder.set_route(rounded_loop(start_mid_longest_edge(loop), radius, kRouteStep, kSensorHeight));
 }
 
 void build_tunnel(SceneBuilder& builder, double length_m) {

@@ -65,6 +65,18 @@ std::vector<Vec3> rounded_loop(const Polygon2& corners, double radius_m, double 
   return resample_closed(dense, step_m, z);
 }
 
+Polygon2 start_mid_longest_edge(const Polygon2& corners) {
+  const std::size_t n = corners.size();
+  const auto edge_length = [&](std::size_t i) { return (corners[(i + 1) % n] - corners[i]).norm(); };
+  std::size_t longest = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    if (edge_length(i) > edge_length(longest)) longest = i;
+  }
+  Polygon2 out = {0.5 * (corners[longest] + corners[(longest + 1) % n])};
+  for (std::size_t k = 1; k <= n; ++k) out.push_back(corners[(longest + k) % n]);
+  return out;
+}
+
 double rounded_loop_length(const Polygon2& corners, double radius_m) {
   const std::size_t n = corners.size();
   double length = 0;

@@ -16,6 +16,10 @@ using Polygon2 = std::vector<Eigen::Vector2d>;
 // of radius_m, sampled every ~step_m at height z; first == last.
 std::vector<Vec3> rounded_loop(const Polygon2& corners, double radius_m, double step_m, double z);
 
+// The same closed polygon starting mid-way along its longest edge, where it gets a collinear corner
+// (rounded_loop keeps it as a plain waypoint): a route that starts and ends on a straight stretch.
+Polygon2 start_mid_longest_edge(const Polygon2& corners);
+
 // Length of the rounded loop: perimeter minus, per corner of turning angle a, 2 r tan(a/2) - r a.
 double rounded_loop_length(const Polygon2& corners, double radius_m);
 

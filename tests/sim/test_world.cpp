@@ -95,6 +95,35 @@ TEST_P(WorldTest, GenerationIsDeterministicPerSeed) {
 INSTANTIATE_TEST_SUITE_P(Scenarios, WorldTest, ::testing::ValuesIn(kAll),
                          [](const auto& info) { return scenario_name(info.param); });
 
+TEST(Route, StartMidLongestEdgeKeepsTheLoopAndStartsOnAStraight) {
+  const Polygon2 corners = {{0, 0}, {4, 0}, {4, 1}, {0, 1}};
+  const Polygon2 moved = start_mid_longest_edge(corners);
+  ASSERT_EQ(moved.size(), 5u);
+  EXPECT_EQ(moved[0], Eigen::Vector2d(2, 0));
+  EXPECT_EQ(moved[1], Eigen::Vector2d(4, 0));
+  EXPECT_EQ(moved[4], Eigen::Vector2d(0, 0));
+  EXPECT_NEAR(rounded_loop_length(moved, 0.3), rounded_loop_length(corners, 0.3), 1e-12);
+  const std::vector<Vec3> route = rounded_loop(moved, 0.3, 0.1, 1.0);
+  EXPECT_NEAR(polyline_length(route), rounded_loop_length(corners, 0.3), 0.01);
+  // Start and end on the straight: the route leaves and arrives along +x.
+  EXPECT_NEAR(route.front().y(), 0.0, 1e-12);
+  EXPECT_NEAR((route[1] - route[0]).normalized().x(), 1.0, 1e-9);
+  EXPECT_NEAR((route.back() - route[route.size() - 2]).normalized().x(), 1.0, 1e-9);
+}
+
+TEST(World, HallwayRouteStartsMidCorridorHeadingAlongIt) {
+  const World world = World::generate(Scenario::kHallway, 1);
+  const auto& route = world.route_W();
+  // The start is on a straight: the legs before and after it point the same way.
+  const Vec3 in = (route.back() - route[route.size() - 2]).normalized(), out = (route[1] - route[0]).normalized();
+  EXPECT_GT(in.dot(out), 0.9999);
+  // At least 5 m of straight corridor ahead and behind.
+  for (std::size_t k = 1; k <= 10; ++k) {
+    EXPECT_GT((route[k + 1] - route[k]).normalized().dot(out), 0.9999) << k;
+    EXPECT_GT((route[route.size() - k] - route[route.size() - k - 1]).normalized().dot(out), 0.9999) << k;
+  }
+}
+
 TEST(World, ParseScenarioRoundTripsAndRejectsUnknownNames) {
   for (const Scenario s : kAll) EXPECT_EQ(parse_scenario(scenario_name(s)), s);
   EXPECT_THROW(parse_scenario("cave"), std::invalid_argument);
