@@ -30,9 +30,9 @@ struct LoopClosureConfig {
   int max_bow_candidates = 3;          // best BoW results verified per query
   double min_bow_score = 0.0;          // absolute floor of the BoW score
   DescriptorMatchConfig descriptor_matching;  // query's left key image vs candidate's (Hamming, ratio, mutual)
-  int min_descriptor_matches = 40;     // of those, matches whose candidate row has a 3D point
+  int min_descriptor_matches = 20;     // of those, matches whose candidate row has a 3D point
   // EPnP in RANSAC on the candidate's 3D points and the query's left keypoints.
-  int min_pnp_inliers = 25;
+  int min_pnp_inliers = 15;
   double pnp_reprojection_px = 3.0;
   int pnp_ransac_iterations = 200;
   std::uint64_t pnp_ransac_seed = 1;   // cv::theRNG() state before each RANSAC
