@@ -77,16 +77,24 @@ TEST(CmdEval, BadInputExitsTwoNamingFileAndLine) {
   }
 }
 
-TEST(CmdEvalMap, ReportsMreAndWritesColoredMap) {
-  const auto dir = test::temp_dir();
-  PointCloud model, map;
+// A room corner (floor and two walls, 6 m) and a small box face: ICP is constrained in every direction.
+PointCloud corner_cloud() {
+  PointCloud cloud;
   for (int x = 0; x < 60; ++x) {
     for (int y = 0; y < 60; ++y) {
-      model.points.emplace_back(0.1f * x, 0.1f * y, 0.0f);
-      model.points.emplace_back(0.1f * x, 0.0f, 0.1f * y);
-      model.points.emplace_back(0.0f, 0.1f * x, 0.1f * y);
+      cloud.points.emplace_back(0.1f * x, 0.1f * y, 0.0f);
+      cloud.points.emplace_back(0.1f * x, 0.0f, 0.05f * y);
+      cloud.points.emplace_back(0.0f, 0.1f * x, 0.05f * y);
+      cloud.points.emplace_back(2.0f + 0.01f * x, 3.0f, 0.01f * y);
     }
   }
+  return cloud;
+}
+
+TEST(CmdEvalMap, ReportsMreAndWritesColoredMap) {
+  const auto dir = test::temp_dir();
+  const PointCloud model = corner_cloud();
+  PointCloud map;
   for (const auto& p : model.points) map.points.push_back(p + Eigen::Vector3f(0.05f, -0.03f, 0.02f));
   write_cloud((dir / "model.ply").string(), model);
   write_cloud((dir / "map.ply").string(), map);
@@ -113,15 +121,8 @@ TEST(CmdEvalMap, ReportsMreAndWritesColoredMap) {
 // from the identity does not; bad pose files exit 2 naming the file.
 TEST(CmdEvalMap, FirstPoseAlignmentFromPoseFiles) {
   const auto dir = test::temp_dir();
-  PointCloud model, map;
-  for (int x = 0; x < 60; ++x) {
-    for (int y = 0; y < 60; ++y) {
-      model.points.emplace_back(0.1f * x, 0.1f * y, 0.0f);
-      model.points.emplace_back(0.1f * x, 0.0f, 0.05f * y);
-      model.points.emplace_back(0.0f, 0.1f * x, 0.05f * y);
-      model.points.emplace_back(2.0f + 0.01f * x, 3.0f, 0.01f * y);
-    }
-  }
+  const PointCloud model = corner_cloud();
+  PointCloud map;
   const SE3 T_We_Wg(so3::exp_quat(Vec3(0.0, 0.0, 85.0 * M_PI / 180.0)), Vec3(1.5, -2.0, 0.3));
   for (const auto& p : model.points) map.points.push_back((T_We_Wg * p.cast<double>()).cast<float>());
   Trajectory gt, est;
