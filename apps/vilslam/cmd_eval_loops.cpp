@@ -1,7 +1,6 @@
 // `vilslam eval-loops --loops loops.csv --gt GT`: each accepted loop's constraint against the true relative
 // pose, true and false loops (docs/evaluation.md).
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -10,7 +9,6 @@
 #include "common/json_writer.h"
 #include "eval/loop_eval.h"
 #include "io/dataset_groundtruth.h"
-#include "io/trajectory_io.h"
 #include "loop/loop_constraints_io.h"
 #include "vilslam/command.h"
 
@@ -21,12 +19,6 @@ using namespace vilslam;
 struct Options {
   std::string loops_path, gt_path, json_path;
 };
-
-// A dataset folder: its ground truth moved into the LiDAR frame (T_W_I T_I_L); a file: LiDAR poses.
-Trajectory lidar_ground_truth(const std::string& gt_path) {
-  if (!std::filesystem::is_directory(gt_path)) return read_trajectory(gt_path, TrajectoryFormat::kTum);
-  return dataset_groundtruth(gt_path, GroundTruthFrame::kLidar);
-}
 
 vilslam::cli::Command reg("eval-loops", "Errors of loop constraints (loops.csv) against ground truth, true and false loops",
                           [](CLI::App& app) {
@@ -39,7 +31,7 @@ vilslam::cli::Command reg("eval-loops", "Errors of loop constraints (loops.csv) 
     for (const loop::LoopRow& row : loop::read_loop_rows(o->loops_path)) {
       loops.push_back({row.from_t_ns, row.to_t_ns, row.T_from_to, row.T_from_to_epnp});
     }
-    const Trajectory gt = lidar_ground_truth(o->gt_path);
+    const Trajectory gt = read_groundtruth(o->gt_path, GroundTruthFrame::kLidar);
     eval::LoopEvaluation e;
     try {
       e = eval::evaluate_loops(loops, gt);

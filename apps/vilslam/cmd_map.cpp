@@ -1,7 +1,9 @@
-// `vilslam map DATASET --poses lidar.tum --out map.ply`: the dense map of the sweeps stitched with the
-// given LiDAR poses (docs/map.md).
+// `vilslam map DATASET --poses lidar.tum --out map.ply [--start-s S] [--end-s E]`: the dense map of the sweeps
+// stitched with the given LiDAR poses, optionally of the sweeps ending in a time window only (docs/map.md).
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -22,7 +24,16 @@ struct Options {
   unsigned min_hits = 1;
   bool no_dewarp = false;
   bool also_pcd = false;
+  std::optional<double> start_s, end_s;  // window, seconds after the first pose
 };
+
+// The window [start, end) in the IMU clock, from seconds after the first pose (open ends stay open).
+void set_window(const Options& o, TimeNs first_pose_t_ns, map::MapBuilderConfig* config) {
+  for (const auto& [name, value] : {std::pair{"--start-s", o.start_s}, std::pair{"--end-s", o.end_s}})
+    if (value && !std::isfinite(*value)) throw std::invalid_argument(std::string(name) + " must be finite");
+  if (o.start_s) config->window_start_ns = first_pose_t_ns + s_to_ns(*o.start_s);
+  if (o.end_s) config->window_end_ns = first_pose_t_ns + s_to_ns(*o.end_s);
+}
 
 void check_cloud_extension(const std::string& path) {
   const std::string ext = std::filesystem::path(path).extension().string();
@@ -41,11 +52,15 @@ vilslam::cli::Command reg("map", "Dense map: the dataset's sweeps dewarped and s
   app.add_option("--max-range", o->config.max_range_m, "Drop returns farther than this, m")->capture_default_str();
   app.add_flag("--no-dewarp", o->no_dewarp, "Do not dewarp sweeps (every point takes the sweep-end pose)");
   app.add_flag("--pcd", o->also_pcd, "Also write the map as binary PCD next to --out");
+  app.add_option("--start-s", o->start_s,
+                 "Only sweeps ending at or after this many seconds after the first pose of --poses");
+  app.add_option("--end-s", o->end_s, "Only sweeps ending before this many seconds after the first pose of --poses");
   return [o]() {
     check_cloud_extension(o->out_path);
     const Trajectory T_W_L = read_trajectory(o->poses_path, TrajectoryFormat::kTum);
     if (T_W_L.empty()) throw InputError(o->poses_path, "no poses");
     o->config.dewarp = !o->no_dewarp;
+    set_window(*o, T_W_L.front().t_ns, &o->config);
     const map::MapBuildResult built = map::build_dense_map(o->dataset, T_W_L, o->config);
     PointCloud cloud;
     cloud.points = built.map.points(o->min_hits);
@@ -53,7 +68,11 @@ vilslam::cli::Command reg("map", "Dense map: the dataset's sweeps dewarped and s
     write_cloud(o->out_path, cloud);
     if (o->also_pcd) write_cloud(std::filesystem::path(o->out_path).replace_extension(".pcd").string(), cloud);
     const map::MapBuildStats& s = built.stats;
-    std::printf("sweeps: %zu used, %zu skipped (not covered by the poses)\n", s.sweeps_used, s.sweeps_skipped);
+    std::printf("sweeps: %zu used, %zu skipped (not covered by the poses)", s.sweeps_used, s.sweeps_skipped);
+    if (o->start_s || o->end_s)
+      std::printf(", %zu outside the window (sweep ends from %.3f to before %.3f s after the first pose)",
+                  s.sweeps_outside_window, o->start_s.value_or(-INFINITY), o->end_s.value_or(INFINITY));
+    std::printf("\n");
     std::printf("points: %zu inserted, %zu out of range\n", s.points_inserted, s.points_out_of_range);
     std::printf("voxels: %zu of %.4f m, %zu written (min hits %u), hash table %.1f MB\n", built.map.num_voxels(),
                 built.map.voxel_size_m(), cloud.size(), o->min_hits, built.map.memory_bytes() / 1e6);

@@ -1,6 +1,7 @@
-// `vilslam odometry-table --work DIR [--presets a,b] [--seed S] [--preview] [--config RUN_YAML] [--out FILE]
-// [--note TEXT]`: simulates (or reuses) each preset, runs `vil` and `lidar-only`, and writes the paper's
-// Table I with odometry, loop-closed drift and loops (docs/odometry.md, src/eval/odometry_table.h).
+// `vilslam odometry-table --work DIR [--presets a,b] [--seed S] [--preview] [--config RUN_YAML] [--map-voxel M |
+// --no-maps] [--out FILE] [--note TEXT]`: simulates (or reuses) each preset, runs `vil` and `lidar-only`, and
+// writes the paper's Table I with odometry, loop-closed drift, loops and the MRE of the dense maps
+// (docs/odometry.md, src/eval/odometry_table.h).
 #include <spdlog/spdlog.h>
 #include <sys/utsname.h>
 #include <unistd.h>
@@ -18,9 +19,12 @@
 
 #include "common/error.h"
 #include "common/json_writer.h"
+#include "eval/map_error.h"
 #include "eval/odometry_markdown.h"
 #include "eval/odometry_table.h"
+#include "io/cloud_io.h"
 #include "io/dataset.h"
+#include "map/map_builder.h"
 #include "pipeline/offline_runner.h"
 #include "pipeline/run_config.h"
 #include "pipeline/run_outputs.h"
@@ -38,6 +42,8 @@ struct Options {
   std::uint64_t seed = 1;
   bool preview = false;
   std::string config_path;  // run YAML of both runs; empty: built-in defaults
+  double map_voxel_m = 0.05;  // voxels of the dense maps the MRE is measured on
+  bool no_maps = false;
   std::string out = "docs/odometry.md";
   std::string note;
 };
@@ -117,6 +123,53 @@ void add_loop_closure(const ModeRun& vil, eval::OdometryInputs* in) {
   in->loops = std::move(loops);
 }
 
+// MRE of the dense map of these LiDAR poses, as `vilslam map` then `vilslam eval-map --first-pose --gt`.
+eval::MapRegistration map_registration(const fs::path& data, const Trajectory& T_W_L, const Trajectory& gt_T_W_L,
+                                       const PointCloud& model, double voxel_m) {
+  const auto start = std::chrono::steady_clock::now();
+  eval::MapRegistration m;
+  try {
+    map::MapBuilderConfig build;
+    build.voxel_size_m = voxel_m;
+    PointCloud cloud;
+    cloud.points = map::build_dense_map(data.string(), T_W_L, build).map.points();
+    eval::MapErrorConfig config;
+    config.initial = eval::first_pose_alignment(T_W_L, gt_T_W_L);
+    const eval::MapError e = eval::compute_map_error(cloud, model, config);
+    m.points = e.per_point_m.size();
+    m.mean_m = e.mean_m;
+    m.median_m = e.median_m;
+    m.p95_m = e.p95_m;
+    m.icp_converged = e.icp.converged;
+  } catch (const InputError& e) {  // e.g. no sweep within the poses' span
+    m.failure = e.what();
+  } catch (const std::invalid_argument& e) {  // e.g. too few ICP correspondences
+    m.failure = e.what();
+  }
+  m.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return m;
+}
+
+// The four dense maps of a preset (eval::MapErrors); a lost run gets none.
+eval::MapErrors measure_maps(const fs::path& data, const eval::OdometryInputs& in, const eval::OdometryRow& row,
+                             const Options& o) {
+  const std::string model_path = open_dataset(data.string())->reference_model_path();
+  if (model_path.empty()) throw InputError(data.string(), "has no reference model (model.ply) for the MRE");
+  const PointCloud model = read_cloud(model_path);
+  spdlog::info("odometry-table: dense maps ({} m voxels) of {}", o.map_voxel_m, row.preset);
+  const auto measure = [&](const eval::RunTrajectory& run, const eval::DriftResult& drift) {
+    if (drift.lost) return eval::MapRegistration{"the run is lost"};
+    return map_registration(data, run.poses, in.gt_T_W_L, model, o.map_voxel_m);
+  };
+  eval::MapErrors maps;
+  maps.voxel_m = o.map_voxel_m;
+  maps.vil = measure(in.vil, row.vil);
+  maps.vil_final = measure(in.vil_final, row.vil_final);
+  maps.lidar_only = measure(in.lidar_only, row.lidar_only);
+  maps.truth = map_registration(data, in.gt_T_W_L, in.gt_T_W_L, model, o.map_voxel_m);
+  return maps;
+}
+
 eval::OdometryRow measure_preset(const fs::path& work, const std::string& preset, const OfflineRunConfig& config,
                                  const Options& o) {
   const fs::path data = work / preset;
@@ -135,7 +188,9 @@ eval::OdometryRow measure_preset(const fs::path& work, const std::string& preset
   in.vil = lidar_poses(vil, &in.vil_degenerate, &in.vil_sweeps);
   in.lidar_only = lidar_poses(lidar_only, &in.lidar_only_degenerate, &in.lidar_only_sweeps);
   add_loop_closure(vil, &in);
-  return eval::compute_odometry_row(in);
+  eval::OdometryRow row = eval::compute_odometry_row(in);
+  if (!o.no_maps) row.maps = measure_maps(data, in, row, o);
+  return row;
 }
 
 // Fails early (exit 2) rather than after the runs when the table cannot be written.
@@ -145,12 +200,20 @@ void check_writable(const fs::path& out) {
     throw InputError(out.string(), "cannot be written: " + dir.string() + " is not a writable folder");
 }
 
+std::string format_voxel(double voxel_m) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", voxel_m);
+  return buf;
+}
+
 std::string command_line(const Options& o) {
   std::string presets;
   for (const std::string& p : o.presets) presets += (presets.empty() ? "" : ",") + p;
   std::string cmd = "vilslam odometry-table --work " + o.work + " --presets " + presets + " --seed " +
                     std::to_string(o.seed) + (o.preview ? " --preview" : "") +
-                    (o.config_path.empty() ? "" : " --config " + o.config_path) + " --out " + o.out;
+                    (o.config_path.empty() ? "" : " --config " + o.config_path) +
+                    (o.no_maps ? std::string(" --no-maps") : " --map-voxel " + format_voxel(o.map_voxel_m)) +
+                    " --out " + o.out;
   if (!o.note.empty()) cmd += " --note '" + o.note + "'";
   return cmd;
 }
@@ -174,7 +237,7 @@ std::string machine(double load_at_start) {
 }
 
 vilslam::cli::Command reg("odometry-table",
-                          "Paper's Table I (VIO / VIL / LiDAR-only / loop-closed FDE, loops) on simulated presets",
+                          "Paper's Table I (VIO / VIL / LiDAR-only / loop-closed FDE, loops, MRE) on simulated presets",
                           [](CLI::App& app) {
   auto o = std::make_shared<Options>();
   app.add_option("--work", o->work, "Work folder: WORK/<preset> (reused or simulated), WORK/<preset>_<mode> runs")
@@ -183,6 +246,10 @@ vilslam::cli::Command reg("odometry-table",
   app.add_option("--seed", o->seed, "Seed of the presets simulated here")->capture_default_str();
   app.add_flag("--preview", o->preview, "Simulate only the preview seconds (quick check, the route does not close)");
   app.add_option("--config", o->config_path, "Run YAML of the vil and lidar-only runs (as `vilslam run --config`)");
+  auto* voxel = app.add_option("--map-voxel", o->map_voxel_m, "Voxel size of the dense maps whose MRE is measured, m")
+                    ->check(CLI::PositiveNumber)
+                    ->capture_default_str();
+  app.add_flag("--no-maps", o->no_maps, "Do not build the dense maps (no MRE columns)")->excludes(voxel);
   app.add_option("--out", o->out, "Markdown file to write")->capture_default_str();
   app.add_option("--note", o->note, "Text appended to the page (e.g. how reused simulations were made)");
   return [o]() {

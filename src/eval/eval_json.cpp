@@ -74,6 +74,15 @@ std::string map_error_json(const MapError& e, const MapErrorConfig& config) {
   json.key("median_m").value(e.median_m);
   json.key("p95_m").value(e.p95_m);
   json.key("aligned").value(config.align);
+  json.key("initial_alignment").begin_object();
+  json.key("rule").value(config.initial.first_pose_t_ns ? "first_pose" : "identity");
+  if (config.initial.first_pose_t_ns) {
+    json.key("first_pose_t_ns").value(static_cast<std::int64_t>(*config.initial.first_pose_t_ns));
+  } else {
+    json.key("first_pose_t_ns").null();
+  }
+  write_matrix(json, "T_model_map", config.initial.T_model_map.matrix());
+  json.end_object();
   json.key("icp").begin_object();
   json.key("mode").value(config.icp.mode == IcpMode::kPointToPlane ? "point_to_plane" : "point_to_point");
   json.key("iterations").value(e.icp.iterations);

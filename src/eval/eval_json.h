@@ -12,8 +12,9 @@ namespace vilslam::eval {
 //  "fde_start_aligned_percent", "path_length_m", "matched_poses", "alignment": {mode, scale, T (4x4 rows)}}
 std::string trajectory_report_json(const TrajectoryEvalReport& report, const TrajectoryEvalConfig& config);
 
-// {"points", "mean_m", "median_m", "p95_m", "aligned", "icp": {mode, iterations, converged, inliers, rmse_m,
-//  T_model_map (4x4 rows)}}
+// {"points", "mean_m", "median_m", "p95_m", "aligned", "initial_alignment": {rule ("first_pose" or
+//  "identity"), first_pose_t_ns (null for the identity), T_model_map (4x4 rows)}, "icp": {mode, iterations,
+//  converged, inliers, rmse_m, max_correspondence_m, T_model_map (4x4 rows, the final alignment)}}
 std::string map_error_json(const MapError& error, const MapErrorConfig& config);
 
 }  // namespace vilslam::eval

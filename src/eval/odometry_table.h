@@ -1,8 +1,8 @@
 #pragma once
-// The paper's Table I (FDE column) on simulated presets: per preset the final drift of the VIO, of the
-// VIL LiDAR odometry, of LiDAR-only mapping and of the loop-closed VIL trajectory, their ATE against ground
-// truth, the degenerate sweeps, the loops found and their errors, next to the paper's values; rendered as
-// Markdown (docs/odometry.md).
+// The paper's Table I on simulated presets: per preset the final drift of the VIO, of the VIL LiDAR
+// odometry, of LiDAR-only mapping and of the loop-closed VIL trajectory, their ATE against ground truth, the
+// degenerate sweeps, the loops found and their errors, the MRE of the dense maps made with those poses,
+// next to the paper's values; rendered as Markdown (docs/odometry.md).
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -70,6 +70,25 @@ struct LoopClosureResult {
   LoopEvaluation accepted;  // one entry per accepted loop; its false_loops exceed 0.3 m or 3 degrees
 };
 
+// MRE of the dense map built with one trajectory's LiDAR poses, aligned to the reference model by the
+// first-pose rule then ICP (eval/map_error.h), as `vilslam map` then `vilslam eval-map --first-pose` do.
+struct MapRegistration {
+  std::string failure;  // non-empty: no MRE, and why (the run is lost, the map or ICP failed)
+  std::size_t points = 0;
+  double mean_m = 0, median_m = 0, p95_m = 0;
+  bool icp_converged = false;
+  double wall_s = 0;    // building the map and measuring it
+};
+
+// The dense maps of one preset, all with voxels of voxel_m.
+struct MapErrors {
+  double voxel_m = 0;
+  MapRegistration vil;         // lidar.tum of the vil run (odometry)
+  MapRegistration vil_final;   // lidar_final.tum (loop-corrected)
+  MapRegistration lidar_only;  // the paper's LOAM column
+  MapRegistration truth;       // ground-truth poses: the floor of range noise, voxels and model spacing
+};
+
 struct OdometryRow {
   std::string preset, source;
   double gt_length_m = 0;
@@ -81,6 +100,7 @@ struct OdometryRow {
   std::optional<LoopClosureResult> loops;  // nullopt: the VIL run failed
   std::size_t vil_degenerate = 0, vil_sweeps = 0;
   std::size_t lidar_only_degenerate = 0, lidar_only_sweeps = 0;
+  std::optional<MapErrors> maps;  // nullopt: not measured (the command measures them after the row)
 };
 
 // FDE, ATE and the lost verdict of one estimate against its ground truth (same frame).
@@ -90,8 +110,8 @@ DriftResult evaluate_drift(const RunTrajectory& run, const Trajectory& gt, Align
 // Throws std::invalid_argument when the ground truth has fewer than 2 poses or does not span a loop's instants.
 OdometryRow compute_odometry_row(const OdometryInputs& in, const LostCriteria& criteria = {});
 
-// The paper's Table I (odometry FDE in %, path length in m) for a preset and what its results section says
-// of loop closure on it; nullopt for presets it lacks.
+// The paper's Table I (odometry FDE in %, path length in m, MRE in m) for a preset and what its results
+// section says of loop closure on it; nullopt for presets it lacks.
 struct PaperOdometry {
   std::string test;                   // the paper's name of the test
   double length_m = 0;
@@ -99,6 +119,7 @@ struct PaperOdometry {
   std::optional<double> loam_fde_percent;  // nullopt: LOAM did not finish
   std::optional<double> vil_slam_loop_fde_percent;  // FDE after loop closure, when the text gives one
   std::string loop_remark;            // otherwise what the text says ("" when it says nothing)
+  std::optional<double> vil_slam_mre_m, loam_mre_m;  // nullopt: the paper's "x" (no model of that test)
 };
 std::optional<PaperOdometry> paper_odometry(const std::string& preset);
 

@@ -1,7 +1,10 @@
 #include "io/dataset_groundtruth.h"
 
+#include <filesystem>
+
 #include "common/error.h"
 #include "io/dataset.h"
+#include "io/trajectory_io.h"
 
 namespace vilslam {
 
@@ -16,6 +19,11 @@ Trajectory dataset_groundtruth(const std::string& dataset_path, GroundTruthFrame
   for (const GroundTruthState& g : reader->groundtruth()) gt.push_back({g.t_ns, g.T_W_I * T_I_B});
   if (gt.empty()) throw InputError(dataset_path, "dataset has no ground truth");
   return gt;
+}
+
+Trajectory read_groundtruth(const std::string& path, GroundTruthFrame frame) {
+  if (std::filesystem::is_directory(path)) return dataset_groundtruth(path, frame);
+  return read_trajectory(path, TrajectoryFormat::kTum);
 }
 
 }  // namespace vilslam

@@ -12,4 +12,8 @@ enum class GroundTruthFrame { kImu, kLidar };
 // Throws InputError naming the dataset when it has no ground truth, or no LiDAR calibration for kLidar.
 Trajectory dataset_groundtruth(const std::string& dataset_path, GroundTruthFrame frame);
 
+// A `--gt GT` argument: a dataset folder (its ground truth in `frame`) or a TUM file, whose poses are taken
+// to be of that frame already. Throws InputError naming the path on any problem.
+Trajectory read_groundtruth(const std::string& path, GroundTruthFrame frame);
+
 }  // namespace vilslam

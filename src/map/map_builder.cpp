@@ -19,6 +19,7 @@ void check_config(const MapBuilderConfig& c) {
     throw std::invalid_argument("range filter needs 0 <= min_range_m < max_range_m");
   }
   if (!(c.max_pose_gap_s > 0.0)) throw std::invalid_argument("max_pose_gap_s must be positive");
+  if (c.window_start_ns >= c.window_end_ns) throw std::invalid_argument("time window is empty (start >= end)");
 }
 
 void check_poses(const Trajectory& T_W_L) {
@@ -108,13 +109,18 @@ MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory
       ++result.stats.sweeps_skipped;
       continue;
     }
+    if (scan.end_t_ns() < config.window_start_ns || scan.end_t_ns() >= config.window_end_ns) {
+      ++result.stats.sweeps_outside_window;
+      continue;
+    }
     const std::vector<Eigen::Vector3f> points_W = sweep_in_world(scan, T_W_L, config, result.stats.points_out_of_range);
     result.stats.points_inserted += result.map.insert(points_W);
     ++result.stats.sweeps_used;
   }
   if (result.stats.sweeps_used == 0) {
     throw InputError(dataset_path, "no LiDAR sweep lies within the time span of the " + std::to_string(T_W_L.size()) +
-                                       " poses" + span_text(T_W_L));
+                                       " poses" + span_text(T_W_L) +
+                                       (result.stats.sweeps_outside_window > 0 ? " and ends within the time window" : ""));
   }
   return result;
 }

@@ -3,6 +3,7 @@
 // to have the dense mapping results". Every sweep the poses cover is dewarped to its end with the poses
 // interpolated over the sweep, moved into W by the pose at its end and averaged into the voxel map.
 #include <cstddef>
+#include <limits>
 #include <string>
 
 #include "common/types.h"
@@ -16,11 +17,16 @@ struct MapBuilderConfig {
   double max_range_m = 50.0;    // and farther ones (pose errors grow with range)
   double max_pose_gap_s = 0.25; // a sweep needs poses no farther apart than this over its whole span
   bool dewarp = true;           // false: every point takes the sweep-end pose (for comparison)
+  // Time window: only sweeps whose end (IMU clock, the time of their pose in lidar.tum) lies in
+  // [window_start_ns, window_end_ns); e.g. the sweeps after a revisit, to compare their map with the rest.
+  TimeNs window_start_ns = std::numeric_limits<TimeNs>::min();
+  TimeNs window_end_ns = std::numeric_limits<TimeNs>::max();
 };
 
 struct MapBuildStats {
   std::size_t sweeps_used = 0;
   std::size_t sweeps_skipped = 0;     // not covered by the poses
+  std::size_t sweeps_outside_window = 0;  // covered by the poses, but not ending in the time window
   std::size_t points_inserted = 0;
   std::size_t points_out_of_range = 0;
 };
@@ -33,7 +39,8 @@ struct MapBuildResult {
 // T_W_L: LiDAR poses sorted by strictly increasing time, in the IMU clock (as `vilslam run` writes
 // lidar.tum: one per sweep end), or denser. Sweep times are moved to the IMU clock with the
 // calibration's lidar_time_offset_ns. Throws InputError naming the dataset when it is missing, has no
-// LiDAR, or no sweep is covered by the poses; std::invalid_argument on a bad config or bad poses.
+// LiDAR, or no sweep in the window is covered by the poses; std::invalid_argument on a bad config (an empty
+// window too) or bad poses.
 MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory& T_W_L, const MapBuilderConfig& config);
 
 }  // namespace vilslam::map

@@ -1,7 +1,10 @@
 // The `vilslam eval` and `vilslam eval-map` commands, run as a user would.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "io/cloud_io.h"
+#include "io/trajectory_io.h"
 #include "cli_output.h"
 #include "test_util.h"
 
@@ -74,16 +77,24 @@ TEST(CmdEval, BadInputExitsTwoNamingFileAndLine) {
   }
 }
 
-TEST(CmdEvalMap, ReportsMreAndWritesColoredMap) {
-  const auto dir = test::temp_dir();
-  PointCloud model, map;
+// A room corner (floor and two walls, 6 m) and a small box face: ICP is constrained in every direction.
+PointCloud corner_cloud() {
+  PointCloud cloud;
   for (int x = 0; x < 60; ++x) {
     for (int y = 0; y < 60; ++y) {
-      model.points.emplace_back(0.1f * x, 0.1f * y, 0.0f);
-      model.points.emplace_back(0.1f * x, 0.0f, 0.1f * y);
-      model.points.emplace_back(0.0f, 0.1f * x, 0.1f * y);
+      cloud.points.emplace_back(0.1f * x, 0.1f * y, 0.0f);
+      cloud.points.emplace_back(0.1f * x, 0.0f, 0.05f * y);
+      cloud.points.emplace_back(0.0f, 0.1f * x, 0.05f * y);
+      cloud.points.emplace_back(2.0f + 0.01f * x, 3.0f, 0.01f * y);
     }
   }
+  return cloud;
+}
+
+TEST(CmdEvalMap, ReportsMreAndWritesColoredMap) {
+  const auto dir = test::temp_dir();
+  const PointCloud model = corner_cloud();
+  PointCloud map;
   for (const auto& p : model.points) map.points.push_back(p + Eigen::Vector3f(0.05f, -0.03f, 0.02f));
   write_cloud((dir / "model.ply").string(), model);
   write_cloud((dir / "map.ply").string(), map);
@@ -104,6 +115,60 @@ TEST(CmdEvalMap, ReportsMreAndWritesColoredMap) {
                                                 (dir / "model.ply").string());
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.output.find("none.ply"), std::string::npos) << missing.output;
+}
+
+// A map in another world (85 deg of yaw, 2 m away): --first-pose and --gt bring it onto the model, ICP
+// from the identity does not; bad pose files exit 2 naming the file.
+TEST(CmdEvalMap, FirstPoseAlignmentFromPoseFiles) {
+  const auto dir = test::temp_dir();
+  const PointCloud model = corner_cloud();
+  PointCloud map;
+  const SE3 T_We_Wg(so3::exp_quat(Vec3(0.0, 0.0, 85.0 * M_PI / 180.0)), Vec3(1.5, -2.0, 0.3));
+  for (const auto& p : model.points) map.points.push_back((T_We_Wg * p.cast<double>()).cast<float>());
+  Trajectory gt, est;
+  for (int i = 0; i < 100; ++i)
+    gt.push_back({s_to_ns(1.0 + 0.01 * i), SE3(so3::exp_quat(Vec3(0, 0, 0.02 * i)), Vec3(1.0 + 0.02 * i, 2.0, 1.2))});
+  for (int i = 0; i < 9; ++i) est.push_back({s_to_ns(1.005 + 0.1 * i), T_We_Wg * pose_at(gt, s_to_ns(1.005 + 0.1 * i))});
+  write_cloud((dir / "model.ply").string(), model);
+  write_cloud((dir / "map.ply").string(), map);
+  write_trajectory((dir / "gt.tum").string(), gt, TrajectoryFormat::kTum);
+  write_trajectory((dir / "est.tum").string(), est, TrajectoryFormat::kTum);
+  const std::string args = "eval-map --map " + (dir / "map.ply").string() + " --model " + (dir / "model.ply").string();
+
+  const test::CliResult r = test::run_cli(args + " --first-pose " + (dir / "est.tum").string() + " --gt " +
+                                          (dir / "gt.tum").string() + " --json " + (dir / "mre.json").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("initial alignment: first pose at 1.005000000 s"), std::string::npos) << r.output;
+  const std::string doc = test::read_file_bytes(dir / "mre.json");
+  EXPECT_LT(json_number(doc, "mean_m", "mean_m"), 1e-4);
+  EXPECT_NE(doc.find("\"rule\": \"first_pose\""), std::string::npos) << doc;
+  EXPECT_EQ(json_number(doc, "initial_alignment", "first_pose_t_ns"), 1005000000.0);
+
+  const test::CliResult identity = test::run_cli(args + " --json " + (dir / "identity.json").string());
+  if (identity.exit_code == 0) {
+    EXPECT_GT(json_number(test::read_file_bytes(dir / "identity.json"), "mean_m", "mean_m"), 0.05) << identity.output;
+  } else {
+    EXPECT_EQ(identity.exit_code, 2) << identity.output;
+  }
+
+  Trajectory late_gt = gt;
+  for (TimedPose& p : late_gt) p.t_ns += kNsPerSecond;
+  write_trajectory((dir / "late_gt.tum").string(), late_gt, TrajectoryFormat::kTum);
+  std::ofstream(dir / "corrupt.tum") << "1.0 0 0 0 0 0 0 1\n2.0 0 0 zero 0 0 0 1\n";
+  const std::string est_arg = " --first-pose " + (dir / "est.tum").string();
+  for (const auto& [extra, named] :
+       {std::pair{est_arg + " --gt " + (dir / "late_gt.tum").string(), std::string("est.tum")},
+        std::pair{est_arg + " --gt " + (dir / "corrupt.tum").string(), std::string("corrupt.tum")},
+        std::pair{est_arg + " --gt " + (dir / "missing").string(), std::string("missing")},
+        std::pair{" --first-pose " + (dir / "corrupt.tum").string() + " --gt " + (dir / "gt.tum").string(),
+                  std::string("corrupt.tum")},
+        std::pair{est_arg, std::string("--gt")}}) {
+    const test::CliResult bad = test::run_cli(args + extra);
+    EXPECT_EQ(bad.exit_code, 2) << extra << "\n" << bad.output;
+    EXPECT_NE(bad.output.find(named), std::string::npos) << extra << "\n" << bad.output;
+  }
+  EXPECT_NE(test::run_cli(args + est_arg + " --gt " + (dir / "late_gt.tum").string()).output.find("outside"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // `vilslam odometry-table` end to end on a preview highbay: simulated when missing, reused when present,
-// the page holds the numbers `vilslam eval` gives, `--config` reaches both runs; bad input exits 2.
+// the page holds the numbers `vilslam eval` and `vilslam map` + `vilslam eval-map` give, `--config` reaches
+// both runs; bad input exits 2.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -52,7 +53,7 @@ TEST(CmdOdometryTable, PreviewHighbaySimulatesThenReuses) {
   ASSERT_FALSE(row.empty()) << text;
   EXPECT_NE(row.find("| simulated, seed 3, preview |"), std::string::npos) << row;
   EXPECT_NE(r.output.find(row), std::string::npos) << "the table is printed too";
-  EXPECT_NE(text.find("odometry-table --work " + work.string() + " --presets highbay --seed 3 --preview --out"),
+  EXPECT_NE(text.find("odometry-table --work " + work.string() + " --presets highbay --seed 3 --preview --map-voxel 0.05 --out"),
             std::string::npos);
 
   // The preview does not return to its start: the VIO FDE is the start-aligned drift `vilslam eval` reports.
@@ -96,6 +97,21 @@ TEST(CmdOdometryTable, PreviewHighbaySimulatesThenReuses) {
   const eval::TrajectoryEvalReport final_se3 = eval::evaluate_trajectory(lidar_final, gt_L, se3);
   EXPECT_NE(row.find(" / " + fixed3(final_se3.ape.trans.rmse) + " | 0 / 0 / 0 | – |"), std::string::npos) << row;
 
+  // The MRE of the odometry map: `vilslam map` with the table's voxel, then `eval-map` from the first pose.
+  const fs::path map = dir / "vil_map.ply", mre_json = dir / "vil_mre.json";
+  const std::string lidar_tum = (work / "highbay_vil/lidar.tum").string(), data = (work / "highbay").string();
+  ASSERT_EQ(test::run_cli("map " + data + " --poses " + lidar_tum + " --voxel 0.05 --out " + map.string()).exit_code, 0);
+  const test::CliResult mre = test::run_cli("eval-map --map " + map.string() + " --model " + data + "/model.ply" +
+                                            " --first-pose " + lidar_tum + " --gt " + data + " --json " + mre_json.string());
+  ASSERT_EQ(mre.exit_code, 0) << mre.output;
+  const std::string mre_doc = test::read_file_bytes(mre_json);
+  const double vil_mre_m = json_number(mre_doc, "mean_m", "mean_m");
+  const bool converged = mre_doc.find("\"converged\": true") != std::string::npos;
+  EXPECT_LT(vil_mre_m, 0.2);
+  EXPECT_NE(row.find("| " + fixed3(vil_mre_m) + (converged ? "" : "*") + " / "), std::string::npos) << row;
+  EXPECT_NE(row.find(" | 0.08 / 0.22 | "), std::string::npos) << row;  // the paper's highbay MRE
+  EXPECT_NE(text.find("Dense maps in voxels of 0.050 m"), std::string::npos) << text;
+
   // A second work folder whose highbay is a link to the first: reused, same numbers.
   // Its --config (loop closure off) reaches both runs; with no loop in the preview the numbers stay.
   const fs::path work2 = dir / "work2", page2 = dir / "odometry2.md", config = dir / "no_loops.yaml";
@@ -114,7 +130,7 @@ TEST(CmdOdometryTable, PreviewHighbaySimulatesThenReuses) {
     const std::string yaml = test::read_file_bytes(work2 / run);
     EXPECT_NE(yaml.find("enabled: false"), std::string::npos) << run;
   }
-  EXPECT_NE(test::read_file_bytes(page2).find(" --config " + config.string() + " --out "), std::string::npos);
+  EXPECT_NE(test::read_file_bytes(page2).find(" --config " + config.string() + " --map-voxel 0.05 --out "), std::string::npos);
 }
 
 TEST(CmdOdometryTable, BadInputExitsTwo) {
@@ -130,6 +146,7 @@ TEST(CmdOdometryTable, BadInputExitsTwo) {
                           " --out " + page)
                 .exit_code,
             2);
+  EXPECT_EQ(test::run_cli("odometry-table --work " + work + " --presets highbay --map-voxel 0 --out " + page).exit_code, 2);
   EXPECT_FALSE(fs::exists(dir / "work"));
   fs::create_directories(dir / "work" / "highbay");  // not a complete simulation
   EXPECT_EQ(test::run_cli("odometry-table --work " + work + " --presets highbay --out " + page).exit_code, 2);

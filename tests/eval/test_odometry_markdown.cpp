@@ -61,15 +61,19 @@ TEST(OdometryMarkdown, RowCells) {
   EXPECT_NE(row.find("| 0.08 % (118 m) | 0.56 % | n/r | closes the loop, no FDE given | yes |"), std::string::npos) << row;
   EXPECT_NE(row.find("| 0 of 1021 / 4 of 1022 | 0.126 / 0.171 / 0.033 | 0.115 / 0.027 / 0.012 |"), std::string::npos)
       << row;
-  EXPECT_NE(row.find("| 12 / 3 / 1 | 0.021 m 0.32° / 0.088 m 1.20° |\n"), std::string::npos) << row;
+  EXPECT_NE(row.find("| 12 / 3 / 1 | 0.021 m 0.32° / 0.088 m 1.20° | not measured | 0.08 / 0.22 | – |\n"),
+            std::string::npos)
+      << row;
   for (const char* column : {"| VIL + loop FDE |", "| paper VIL-SLAM + loop |", "| ATE RMSE se3 VIO / VIL / VIL + loop (m) |",
-                             "| loops examined / accepted / false |", "| median loop error EPnP+ICP / EPnP |"})
+                             "| loops examined / accepted / false |", "| median loop error EPnP+ICP / EPnP |",
+                             "| MRE VIL / VIL + loop / LiDAR-only / true poses (m) |", "| paper MRE VIL-SLAM / LOAM (m) |",
+                             "| VIL + loop MRE <= paper |"})
     EXPECT_NE(table.find(column), std::string::npos) << column;
   EXPECT_EQ(row.find("†"), std::string::npos);
   EXPECT_EQ(table.find("Lost runs"), std::string::npos);
-  // Every line has the header's 18 columns.
+  // Every line has the header's 21 columns.
   for (std::size_t start = 0, end; (end = table.find('\n', start)) != std::string::npos; start = end + 1)
-    EXPECT_EQ(count(table.substr(start, end - start), "|"), 19u) << table.substr(start, end - start);
+    EXPECT_EQ(count(table.substr(start, end - start), "|"), 22u) << table.substr(start, end - start);
 }
 
 TEST(OdometryMarkdown, LostRunsOpenRoutesAndPresetsWithoutPaperValues) {
@@ -92,7 +96,7 @@ TEST(OdometryMarkdown, LostRunsOpenRoutesAndPresetsWithoutPaperValues) {
   const std::string tunnel_row = table.substr(table.find("| tunnel"), table.find("| room") - table.find("| tunnel"));
   EXPECT_NE(tunnel_row.find("| 2.500 % (2.100 m) | **lost** |"), std::string::npos) << tunnel_row;
   EXPECT_NE(tunnel_row.find("| 1.86 % (85 m) | not finished | n/r | 0.08 % | no |"), std::string::npos) << tunnel_row;
-  EXPECT_NE(tunnel_row.find("| 4 / 0 / 0 | – |\n"), std::string::npos) << tunnel_row;
+  EXPECT_NE(tunnel_row.find("| 4 / 0 / 0 | – | not measured | × / × | – |\n"), std::string::npos) << tunnel_row;
   EXPECT_NE(table.find("Lost runs:\n\n- tunnel, LiDAR-only: lost, strays 14.00 m from ground truth (limit 8.50 m) "
                        "(100 poses; FDE 30.000 %, 25.000 m; ATE RMSE 9.000 m)\n"),
             std::string::npos)
@@ -100,8 +104,46 @@ TEST(OdometryMarkdown, LostRunsOpenRoutesAndPresetsWithoutPaperValues) {
   const std::string room_row = table.substr(table.find("| room"));
   EXPECT_NE(room_row.find("| 2.500 | 0.292 %† (0.342 m) |"), std::string::npos) << room_row;
   EXPECT_NE(room_row.find("| **lost** | – | – | – | – |"), std::string::npos) << room_row;
-  EXPECT_NE(room_row.find("| – | – |\n"), std::string::npos) << room_row;
+  EXPECT_NE(room_row.find("| – | – | not measured | – | – |\n"), std::string::npos) << room_row;
   EXPECT_NE(table.find("- room, VIL + loop: lost, the run failed: no key image"), std::string::npos) << table;
+}
+
+MapRegistration mre(double mean_m, bool converged = true) {
+  MapRegistration m;
+  m.points = 1000;
+  m.mean_m = mean_m;
+  m.icp_converged = converged;
+  m.wall_s = 30;
+  return m;
+}
+
+// The MRE cells: four maps (an ICP that did not converge starred, a lost run's map missing and listed),
+// the paper's MRE, the comparison with it, the voxel size and time on the page.
+TEST(OdometryMarkdown, MreCells) {
+  OdometryRow row = highbay();
+  MapErrors maps;
+  maps.voxel_m = 0.05;
+  maps.vil = mre(0.0412);
+  maps.vil_final = mre(0.0307, false);
+  maps.lidar_only.failure = "the run is lost";
+  maps.truth = mre(0.0184);
+  row.maps = maps;
+  const std::string table = odometry_table_markdown({row});
+  EXPECT_NE(table.find("| 0.041 / 0.031* / – / 0.018 | 0.08 / 0.22 | yes |\n"), std::string::npos) << table;
+  EXPECT_NE(table.find("Dense maps without MRE:\n\n- highbay, LiDAR-only map: the run is lost\n"), std::string::npos)
+      << table;
+  row.maps->vil_final.mean_m = 0.09;
+  EXPECT_NE(odometry_table_markdown({row}).find("| 0.08 / 0.22 | no |\n"), std::string::npos);
+  row.maps->vil_final.failure = "ICP: fewer than 6 correspondences within range";
+  EXPECT_NE(odometry_table_markdown({row}).find("| 0.041 / – / – / 0.018 | 0.08 / 0.22 | no (no map) |\n"),
+            std::string::npos);
+
+  const std::string page = odometry_document_markdown({row}, OdometryDocument{});
+  EXPECT_NE(page.find("Dense maps in voxels of 0.050 m"), std::string::npos) << page;
+  EXPECT_NE(page.find("Building and measuring the 2 maps took 1.5 min."), std::string::npos) << page;
+  EXPECT_NE(page.find("aligned to the model by the first pose only, then ICP"), std::string::npos);
+  EXPECT_NE(odometry_document_markdown({highbay()}, OdometryDocument{}).find("not measured (`--no-maps`)"),
+            std::string::npos);
 }
 
 TEST(OdometryMarkdown, DocumentHasCommandTableDateAndNote) {

@@ -236,6 +236,15 @@ TEST(OdometryTable, PaperValues) {
   EXPECT_FALSE(paper_odometry("loop")->vil_slam_loop_fde_percent.has_value());
   EXPECT_NE(paper_odometry("loop")->loop_remark.find("no loop"), std::string::npos);
   EXPECT_TRUE(paper_odometry("outdoor")->loop_remark.empty());
+  // MRE (m): VIL-SLAM and LOAM; "x" (none) for the tunnel and the outdoor test.
+  EXPECT_DOUBLE_EQ(*paper_odometry("highbay")->vil_slam_mre_m, 0.08);
+  EXPECT_DOUBLE_EQ(*paper_odometry("highbay")->loam_mre_m, 0.22);
+  EXPECT_DOUBLE_EQ(*paper_odometry("hallway")->vil_slam_mre_m, 0.10);
+  EXPECT_DOUBLE_EQ(*paper_odometry("hallway")->loam_mre_m, 0.27);
+  EXPECT_DOUBLE_EQ(*paper_odometry("loop")->vil_slam_mre_m, 0.22);
+  EXPECT_DOUBLE_EQ(*paper_odometry("loop")->loam_mre_m, 0.36);
+  EXPECT_FALSE(paper_odometry("tunnel")->vil_slam_mre_m.has_value());
+  EXPECT_FALSE(paper_odometry("outdoor")->loam_mre_m.has_value());
 }
 
 }  // namespace

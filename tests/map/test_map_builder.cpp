@@ -111,6 +111,66 @@ TEST_F(MapBuilderHighbay, SweepEndPosesAloneAreInterpolated) {
   EXPECT_LT(median_distance_to_world(r.map, world), 0.025);
 }
 
+// Start and end of every sweep in the IMU clock.
+std::vector<std::pair<TimeNs, TimeNs>> sweep_spans(const std::string& dataset) {
+  const auto reader = open_dataset(dataset);
+  std::vector<std::pair<TimeNs, TimeNs>> spans;
+  while (const auto event = reader->next()) {
+    if (const auto* scan = std::get_if<LidarScan>(&event->data)) {
+      const TimeNs offset_ns = reader->calibration().lidar_time_offset_ns;
+      spans.push_back({scan->t_ns + offset_ns, scan->end_t_ns() + offset_ns});
+    }
+  }
+  return spans;
+}
+
+// The window [end of sweep k, end of sweep k + 3) holds the ends of sweeps k to k + 2: the map is the one
+// of poses that cover exactly those sweeps (from the last pose at or before the start of sweep k to the
+// first pose at or after the end of sweep k + 2), point for point; complementary windows split the sweeps.
+TEST_F(MapBuilderHighbay, WindowSelectsExactlyTheSweepsEndingInIt) {
+  const auto spans = sweep_spans(dataset_);
+  ASSERT_GT(spans.size(), 8u);
+  const std::size_t k = 4;
+  MapBuilderConfig window;
+  window.window_start_ns = spans[k].second;
+  window.window_end_ns = spans[k + 3].second;
+  const MapBuildResult in_window = build_dense_map(dataset_, T_W_L_, window);
+  EXPECT_EQ(in_window.stats.sweeps_used, 3u);
+  EXPECT_EQ(in_window.stats.sweeps_outside_window + in_window.stats.sweeps_used + in_window.stats.sweeps_skipped,
+            spans.size());
+
+  const auto first = std::find_if(T_W_L_.rbegin(), T_W_L_.rend(),
+                                  [&](const TimedPose& p) { return p.t_ns <= spans[k].first; });
+  const auto last = std::find_if(T_W_L_.begin(), T_W_L_.end(),
+                                 [&](const TimedPose& p) { return p.t_ns >= spans[k + 2].second; });
+  ASSERT_TRUE(first != T_W_L_.rend() && last != T_W_L_.end());
+  const Trajectory covering(first.base() - 1, last + 1);
+  const MapBuildResult by_poses = build_dense_map(dataset_, covering, MapBuilderConfig{});
+  EXPECT_EQ(by_poses.stats.sweeps_used, 3u);
+  EXPECT_EQ(in_window.stats.points_inserted, by_poses.stats.points_inserted);
+  EXPECT_EQ(in_window.map.points(), by_poses.map.points());
+
+  MapBuilderConfig before, after;
+  before.window_end_ns = after.window_start_ns = spans[k].second;
+  const MapBuildResult all = build_dense_map(dataset_, T_W_L_, MapBuilderConfig{});
+  const MapBuildResult a = build_dense_map(dataset_, T_W_L_, before);
+  const MapBuildResult b = build_dense_map(dataset_, T_W_L_, after);
+  const std::size_t covered_before = std::count_if(spans.begin(), spans.begin() + k, [&](const auto& span) {
+    return span.first >= T_W_L_.front().t_ns && span.second <= T_W_L_.back().t_ns;  // the poses have no gaps
+  });
+  EXPECT_EQ(a.stats.sweeps_used, covered_before);  // sweeps 0 to k - 1; sweep k ends at the window's end
+  EXPECT_EQ(a.stats.sweeps_skipped, all.stats.sweeps_skipped);
+  EXPECT_EQ(a.stats.sweeps_used + b.stats.sweeps_used, all.stats.sweeps_used);
+  EXPECT_EQ(a.stats.points_inserted + b.stats.points_inserted, all.stats.points_inserted);
+
+  MapBuilderConfig empty;
+  empty.window_start_ns = empty.window_end_ns = spans[k].second;
+  EXPECT_THROW(build_dense_map(dataset_, T_W_L_, empty), std::invalid_argument);
+  MapBuilderConfig beyond;
+  beyond.window_start_ns = spans.back().second + 1;
+  EXPECT_THROW(build_dense_map(dataset_, T_W_L_, beyond), InputError);
+}
+
 TEST_F(MapBuilderHighbay, RangeFilterAndBadInput) {
   MapBuilderConfig near;
   near.max_range_m = 5.0;

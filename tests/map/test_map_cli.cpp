@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <fstream>
+#include <vector>
 
 #include "io/cloud_io.h"
 #include "io/trajectory_io.h"
@@ -38,6 +40,40 @@ TEST(MapCli, RerunsAreByteIdentical) {
   EXPECT_LT(read_cloud((dir / "c.ply").string()).size(), read_cloud((dir / "a.ply").string()).size());
 }
 
+// The sweep counts printed by `vilslam map`: used, skipped, outside the window.
+std::vector<int> sweep_counts(const std::string& output) {
+  std::vector<int> n(3, -1);
+  const auto at = output.find("sweeps: ");
+  if (at == std::string::npos) return n;
+  std::sscanf(output.c_str() + at, "sweeps: %d used, %d skipped (not covered by the poses), %d outside", &n[0], &n[1], &n[2]);
+  return n;
+}
+
+// --start-s / --end-s (seconds after the first pose) split the sweeps between two maps.
+TEST(MapCli, TimeWindowSplitsTheSweeps) {
+  const std::string& data = test::highbay_preview();
+  ASSERT_FALSE(data.empty());
+  const fs::path dir = test::temp_dir();
+  const std::string poses = (dir / "lidar.tum").string();
+  write_trajectory(poses, test::groundtruth_lidar_poses(data), TrajectoryFormat::kTum);
+  const std::string base = "map " + data + " --poses " + poses + " --voxel 0.05 --out ";
+  const test::CliResult all = test::run_cli(base + (dir / "all.ply").string());
+  const test::CliResult early = test::run_cli(base + (dir / "early.ply").string() + " --end-s 0.75");
+  const test::CliResult late = test::run_cli(base + (dir / "late.ply").string() + " --start-s 0.75");
+  ASSERT_EQ(all.exit_code, 0) << all.output;
+  ASSERT_EQ(early.exit_code, 0) << early.output;
+  ASSERT_EQ(late.exit_code, 0) << late.output;
+  const std::vector<int> a = sweep_counts(all.output), e = sweep_counts(early.output), l = sweep_counts(late.output);
+  EXPECT_GT(e[0], 3) << early.output;
+  EXPECT_GT(l[0], 3) << late.output;
+  EXPECT_EQ(e[0] + l[0], a[0]) << all.output << early.output << late.output;
+  EXPECT_EQ(e[2], l[0]);
+  EXPECT_EQ(l[2], e[0]);
+  EXPECT_NE(early.output.find("outside the window (sweep ends from -inf to before 0.750 s after the first pose)"),
+            std::string::npos)
+      << early.output;
+}
+
 TEST(MapCli, BadInputExitsTwoWithoutOutput) {
   const std::string& data = test::highbay_preview();
   ASSERT_FALSE(data.empty());
@@ -58,6 +94,9 @@ TEST(MapCli, BadInputExitsTwoWithoutOutput) {
                                   "map " + data + " --poses " + late_poses + " --out " + out,
                                   "map " + data + " --poses " + poses + " --out " + out + " --voxel 0",
                                   "map " + data + " --poses " + poses + " --out " + out + " --voxel nan",
+                                  "map " + data + " --poses " + poses + " --out " + out + " --start-s 1 --end-s 1",
+                                  "map " + data + " --poses " + poses + " --out " + out + " --start-s 100",
+                                  "map " + data + " --poses " + poses + " --out " + out + " --end-s nan",
                                   "map " + data + " --poses " + poses + " --out " + (dir / "map.txt").string()}) {
     const test::CliResult r = test::run_cli(args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
