@@ -115,6 +115,9 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
     out.T_W_L = r.T_W_L;
     out.degenerate = r.degeneracy.degenerate();
     out.information_eigenvalues = r.degeneracy.eigenvalues;
+    out.rms_residual_m = r.rms_residual_m;
+    out.matched_fraction = r.matched_fraction;
+    out.inlier_fraction = r.inlier_fraction;
   }
   out.num_edge_features = static_cast<int>(features.edges.size());
   out.num_surface_features = static_cast<int>(features.surfaces.size());

@@ -33,6 +33,9 @@ struct LidarMappingResult {
   SE3 T_W_L;
   bool degenerate = false;             // some direction was below the degeneracy threshold
   Vec6 information_eigenvalues = Vec6::Zero();  // of J^T J at the solution, ascending
+  double rms_residual_m = 0.0;         // registration fit (RegistrationResult); 0 for the first sweep
+  double matched_fraction = 0.0;
+  double inlier_fraction = 0.0;
   double time_ms = 0.0;                // wall time of process(), for reporting only
   int num_edge_features = 0;           // extracted from the sweep
   int num_surface_features = 0;

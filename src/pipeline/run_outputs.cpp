@@ -57,14 +57,16 @@ std::string timings_json(RunMode mode, const OfflineRunResult& r) {
   return json.str();
 }
 
-// One row per mapped sweep: t_ns, degenerate (0/1), the six eigenvalues of J^T J in ascending order.
+// One row per mapped sweep: t_ns, degenerate (0/1), the six eigenvalues of J^T J in ascending order, and
+// the registration's fit (rms residual, matched and inlier fractions).
 std::string degeneracy_csv(const std::vector<lidar::LidarMappingResult>& mapped) {
   std::ostringstream out;
-  out << std::setprecision(17) << "t_ns,degenerate,eig0,eig1,eig2,eig3,eig4,eig5\n";
+  out << std::setprecision(17)
+      << "t_ns,degenerate,eig0,eig1,eig2,eig3,eig4,eig5,rms_residual_m,matched_fraction,inlier_fraction\n";
   for (const lidar::LidarMappingResult& m : mapped) {
     out << m.t_ns << ',' << (m.degenerate ? 1 : 0);
     for (int i = 0; i < 6; ++i) out << ',' << m.information_eigenvalues[i];
-    out << '\n';
+    out << ',' << m.rms_residual_m << ',' << m.matched_fraction << ',' << m.inlier_fraction << '\n';
   }
   return out.str();
 }

@@ -1,6 +1,8 @@
 // `vilslam run`: output files, bit-identical reruns, bad input, all modes and --config on a simulated sequence.
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include <algorithm>
 #include <fstream>
 #include <vector>
@@ -102,6 +104,22 @@ TEST_F(SimulatedHighbay, AllModes) {
   EXPECT_EQ(count_lines(dir / "lidar-only_a" / "degeneracy.csv"), scans + 1);
   EXPECT_GE(count_lines(dir / "vil_a" / "lidar.tum"), scans - 1);
   EXPECT_EQ(count_lines(dir / "vil_a" / "lidar.tum"), count_lines(dir / "vil_a" / "degeneracy.csv"));
+  // Every registered sweep reports its fit: a residual of centimetres, most features matched and inliers.
+  std::istringstream rows(test::read_file_bytes(dir / "vil_a" / "degeneracy.csv"));
+  std::string row;
+  std::getline(rows, row);
+  EXPECT_EQ(row, "t_ns,degenerate,eig0,eig1,eig2,eig3,eig4,eig5,rms_residual_m,matched_fraction,inlier_fraction");
+  std::getline(rows, row);  // the first sweep builds the map
+  while (std::getline(rows, row)) {
+    std::vector<double> v;
+    std::istringstream cells(row);
+    for (std::string cell; std::getline(cells, cell, ',');) v.push_back(std::stod(cell));
+    ASSERT_EQ(v.size(), 11u) << row;
+    EXPECT_GT(v[8], 0.0) << row;
+    EXPECT_LT(v[8], 0.2) << row;
+    EXPECT_GT(v[9], 0.5) << row;
+    EXPECT_GT(v[10], 0.5) << row;
+  }
 
   const auto reader = open_dataset(data);
   Trajectory gt_I, gt_L;
