@@ -135,6 +135,10 @@ LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, dou
   r.icp_inlier_fraction = icp.inlier_fraction;
   const int icp_matches = icp.num_edge_matches + icp.num_surface_matches;
   r.icp_min_eigenvalue_per_match = icp_matches > 0 ? icp.degeneracy.eigenvalues(0) / icp_matches : 0.0;
+  for (int i = 0; i < 6; ++i) {
+    const double per_match = icp_matches > 0 ? icp.degeneracy.eigenvalues(i) / icp_matches : 0.0;
+    r.icp_degenerate_directions += per_match < config_.icp_min_eigenvalue_per_match;
+  }
   const PoseDifference epnp_icp = pose_difference(r.T_Lu_Lv_epnp, r.T_Lu_Lv);
   r.epnp_icp_translation_m = epnp_icp.translation_m;
   r.epnp_icp_rotation_rad = epnp_icp.rotation_rad;
@@ -153,7 +157,7 @@ LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, dou
       r.icp_inlier_fraction < config_.icp_min_inlier_fraction || r.icp_rms_m > config_.icp_max_rms_m) {
     return rejected(std::move(r), "icp_fitness");
   }
-  if (r.icp_min_eigenvalue_per_match < config_.icp_min_eigenvalue_per_match) {
+  if (r.icp_degenerate_directions > config_.icp_max_degenerate_directions) {
     return rejected(std::move(r), "icp_degenerate");
   }
   if (r.epnp_icp_translation_m > config_.max_epnp_icp_translation_m ||

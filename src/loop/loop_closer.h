@@ -50,7 +50,10 @@ struct LoopClosureConfig {
   double icp_min_matched_fraction = 0.4;  // query features that found a line or plane in the map
   double icp_min_inlier_fraction = 0.5;   // matched features within the loss scale of their line or plane
   double icp_max_rms_m = 0.3;             // over all matched features (non-overlapping parts included)
-  double icp_min_eigenvalue_per_match = 0.01;  // no degenerate direction (lidar/degeneracy.h), robust-weighted
+  double icp_min_eigenvalue_per_match = 0.01;  // degenerate below this (lidar/degeneracy.h), robust-weighted
+  // Degenerate directions a loop may have: ICP keeps EPnP's value along them (solution remapping), so along a
+  // corridor's axis the constraint is the visual one (paper: vision where LiDAR degenerates). 0: none.
+  int icp_max_degenerate_directions = 1;
   // Consistency: EPnP vs ICP, and the loop vs the odometry's prediction of the same relative pose.
   double max_epnp_icp_translation_m = 0.3;
   double max_epnp_icp_rotation_rad = 0.0524;   // 3 degrees
@@ -83,6 +86,7 @@ struct LoopCandidateRecord {
   double icp_matched_fraction = 0.0;
   double icp_inlier_fraction = 0.0;
   double icp_min_eigenvalue_per_match = 0.0;
+  int icp_degenerate_directions = 0;  // eigenvalues per match below icp_min_eigenvalue_per_match
   double epnp_icp_translation_m = 0.0;
   double epnp_icp_rotation_rad = 0.0;
   double path_length_m = 0.0;            // odometry path between the two key frames (key frame poses)

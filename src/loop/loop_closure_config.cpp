@@ -33,6 +33,7 @@ YamlFields loop_closure_yaml_fields(LoopClosureConfig& c) {
       yaml_value("icp_min_inlier_fraction", c.icp_min_inlier_fraction),
       yaml_value("icp_max_rms_m", c.icp_max_rms_m),
       yaml_value("icp_min_eigenvalue_per_match", c.icp_min_eigenvalue_per_match),
+      yaml_value("icp_max_degenerate_directions", c.icp_max_degenerate_directions),
       yaml_value("max_epnp_icp_translation_m", c.max_epnp_icp_translation_m),
       yaml_value("max_epnp_icp_rotation_rad", c.max_epnp_icp_rotation_rad),
       yaml_value("max_odometry_disagreement_m", c.max_odometry_disagreement_m),
@@ -73,6 +74,8 @@ void validate_loop_closure_config(const LoopClosureConfig& c, const std::string&
           "icp_min_plane_spread_ratio must be in [0, 1]");
   require(c.icp_loss_scale_m > 0, "icp_loss_scale_m must be positive");
   require(c.icp_min_eigenvalue_per_match >= 0, "icp_min_eigenvalue_per_match must not be negative");
+  require(c.icp_max_degenerate_directions >= 0 && c.icp_max_degenerate_directions <= 6,
+          "icp_max_degenerate_directions must be in [0, 6]");
   require(c.max_epnp_icp_translation_m > 0 && c.max_epnp_icp_rotation_rad > 0,
           "max_epnp_icp_translation_m and max_epnp_icp_rotation_rad must be positive");
   require(c.max_odometry_disagreement_m > 0 && c.max_odometry_disagreement_per_m >= 0,

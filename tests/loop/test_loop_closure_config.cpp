@@ -40,6 +40,9 @@ TEST(LoopClosureConfig, DefaultsAreValidAndEveryFieldRoundTrips) {
   c.icp_min_inlier_fraction = 0.6;
   c.icp_max_rms_m = 0.08;
   c.icp_min_eigenvalue_per_match = 0.02;
+  c.icp_max_degenerate_directions = 0;
+  c.icp_min_plane_spread_ratio = 0.2;
+  c.icp_loss_scale_m = 0.07;
   c.max_epnp_icp_translation_m = 0.25;
   c.max_epnp_icp_rotation_rad = 0.04;
   c.max_odometry_disagreement_m = 1.5;
@@ -54,6 +57,8 @@ TEST(LoopClosureConfig, DefaultsAreValidAndEveryFieldRoundTrips) {
   EXPECT_EQ(back.descriptor_matching.ratio_test, 0.8);
   EXPECT_EQ(back.pnp_ransac_seed, 7u);
   EXPECT_EQ(back.loop_sigma_rad, 0.005);
+  EXPECT_EQ(back.icp_max_degenerate_directions, 0);
+  EXPECT_EQ(back.icp_loss_scale_m, 0.07);
 }
 
 TEST(LoopClosureConfig, KeysOverrideDefaults) {
@@ -78,6 +83,9 @@ TEST(LoopClosureConfig, BadValuesAndUnknownKeysAreInputErrors) {
                                  "icp_max_rms_m: 0",
                                  "icp_map_point_spacing_m: 0",
                                  "icp_source_leaf_m: -1",
+                                 "icp_max_degenerate_directions: 7",
+                                 "icp_min_plane_spread_ratio: 1.5",
+                                 "icp_loss_scale_m: 0",
                                  "max_epnp_icp_translation_m: 0",
                                  "max_odometry_disagreement_m: 0",
                                  "loop_sigma_m: 0",
