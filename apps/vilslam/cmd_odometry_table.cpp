@@ -1,5 +1,6 @@
 // `vilslam odometry-table --work DIR [--presets a,b] [--seed S] [--preview] [--config RUN_YAML] [--map-voxel M |
-// --no-maps] [--out FILE] [--note TEXT]`: simulates (or reuses) each preset, runs `vil` and `lidar-only`, and
+// --no-maps] [--reuse-runs] [--out FILE] [--note TEXT]`: simulates (or reuses) each preset, runs `vil` and
+// `lidar-only` (or, with --reuse-runs, reads a run folder made with the same config), and
 // writes the paper's Table I with odometry, loop-closed drift, loops and the MRE of the dense maps
 // (docs/odometry.md, src/eval/odometry_table.h).
 #include <spdlog/spdlog.h>
@@ -11,8 +12,10 @@
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -24,6 +27,8 @@
 #include "eval/odometry_table.h"
 #include "io/cloud_io.h"
 #include "io/dataset.h"
+#include "io/trajectory_io.h"
+#include "loop/loop_constraints_io.h"
 #include "map/map_builder.h"
 #include "pipeline/offline_runner.h"
 #include "pipeline/run_config.h"
@@ -44,6 +49,7 @@ struct Options {
   std::string config_path;  // run YAML of both runs; empty: built-in defaults
   double map_voxel_m = 0.05;  // voxels of the dense maps the MRE is measured on
   bool no_maps = false;
+  bool reuse_runs = false;  // read WORK/<preset>_<mode> when its config.yaml is this table's run config
   std::string out = "docs/odometry.md";
   std::string note;
 };
@@ -74,53 +80,103 @@ std::string prepare_dataset(const fs::path& data, const std::string& preset, con
   return "simulated, seed " + std::to_string(o.seed) + (o.preview ? ", preview" : "");
 }
 
+// What the table needs of one run, from the run itself or from its output folder.
 struct ModeRun {
-  OfflineRunResult result;
-  std::string failure;  // the run threw (bad input is not a failure: it propagates)
+  std::string failure;         // the run threw (bad input is not a failure: it propagates)
+  Trajectory camera_states;    // vil: the VIO's camera-rate states T_W_I
+  Trajectory lidar;            // the LiDAR odometry T_W_L (vil with loop closure: its composed motion, lidar.tum)
+  std::size_t degenerate = 0;  // sweeps flagged degenerate
+  std::optional<eval::LoopClosureInputs> loops;  // vil: candidates examined and the accepted loops
+  Trajectory lidar_final;      // vil: lidar_final.tum
 };
 
-// Runs one mode like `vilslam run`, writing its folder; a failed run leaves no folder.
-ModeRun run_mode(const fs::path& data, OfflineRunConfig config, RunMode mode, const fs::path& out) {
-  spdlog::info("odometry-table: {} on {}", run_mode_name(mode), data.string());
+ModeRun outputs_of(const OfflineRunResult& result) {
   ModeRun run;
-  const auto reader = open_dataset(data.string());
-  config.mode = mode;
-  try {
-    run.result = run_offline(*reader, config);
-  } catch (const InputError&) {
-    throw;
-  } catch (const std::exception& e) {
-    run.failure = e.what();
-    fs::remove_all(out);
-    return run;
+  run.camera_states = result.camera_states;
+  for (const lidar::LidarMappingResult& m : result.lidar) {
+    run.lidar.push_back({m.t_ns, m.T_W_L});
+    run.degenerate += m.degenerate ? 1 : 0;
   }
-  write_run_outputs(out.string(), config, run.result);
-  return run;
-}
-
-// The LiDAR odometry: with loop closure (vil) its composed motion, lidar.tum, not the corrected poses.
-eval::RunTrajectory lidar_poses(const ModeRun& run, std::size_t* degenerate, std::size_t* sweeps) {
-  eval::RunTrajectory traj{{}, run.failure};
-  for (const lidar::LidarMappingResult& m : run.result.lidar) {
-    traj.poses.push_back({m.t_ns, m.T_W_L});
-    *degenerate += m.degenerate ? 1 : 0;
-  }
-  if (run.result.loop) traj.poses = run.result.loop->lidar_odometry;
-  *sweeps = run.result.lidar.size();
-  return traj;
-}
-
-// Loop closure of a vil run: lidar_final.tum, the candidates examined and the accepted loops (loops.csv).
-void add_loop_closure(const ModeRun& vil, eval::OdometryInputs* in) {
-  in->vil_final.failure = vil.failure;
-  if (!vil.result.loop) return;
-  const LoopClosureOutput& loop = *vil.result.loop;
-  in->vil_final.poses = loop.lidar_final;
+  if (!result.loop) return run;
+  const LoopClosureOutput& loop = *result.loop;
+  run.lidar = loop.lidar_odometry;
+  run.lidar_final = loop.lidar_final;
   eval::LoopClosureInputs loops;
   loops.candidates_examined = loop.candidates.size();
   for (const loop::LoopCandidateRecord& c : loop.candidates)
     if (c.accepted()) loops.accepted.push_back({c.candidate_t_ns, c.query_t_ns, c.T_Lu_Lv, c.T_Lu_Lv_epnp});
-  in->loops = std::move(loops);
+  run.loops = std::move(loops);
+  return run;
+}
+
+std::string file_text(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+std::size_t data_rows(const fs::path& csv) {
+  std::ifstream in(csv);
+  std::size_t rows = 0;
+  for (std::string line; std::getline(in, line);) rows += !line.empty() && line[0] != '#';
+  return rows;
+}
+
+// A run folder of `vilslam run` (docs/pipeline.md) read back; nullopt when it is incomplete or was made with
+// another config (then the table runs again).
+std::optional<ModeRun> read_run_folder(const fs::path& out, const std::string& config_yaml, RunMode mode) {
+  std::vector<std::string> files = {"config.yaml", "lidar.tum", "degeneracy.csv"};
+  if (mode == RunMode::kVil) files.insert(files.end(), {"vio_camera.tum", "lidar_final.tum", "loops.csv",
+                                                          "loop_candidates.csv"});
+  for (const std::string& f : files)
+    if (!fs::exists(out / f)) return std::nullopt;
+  if (file_text(out / "config.yaml") != config_yaml) {
+    spdlog::info("odometry-table: {} was made with another config, running again", out.string());
+    return std::nullopt;
+  }
+  ModeRun run;
+  run.lidar = read_trajectory((out / "lidar.tum").string(), TrajectoryFormat::kTum);
+  std::ifstream degeneracy(out / "degeneracy.csv");
+  std::string line;
+  std::getline(degeneracy, line);  // header
+  while (std::getline(degeneracy, line)) {
+    const std::size_t comma = line.find(',');
+    run.degenerate += comma != std::string::npos && line.compare(comma + 1, 2, "1,") == 0;
+  }
+  if (mode != RunMode::kVil) return run;
+  run.camera_states = read_trajectory((out / "vio_camera.tum").string(), TrajectoryFormat::kTum);
+  run.lidar_final = read_trajectory((out / "lidar_final.tum").string(), TrajectoryFormat::kTum);
+  eval::LoopClosureInputs loops;
+  loops.candidates_examined = data_rows(out / "loop_candidates.csv");
+  for (const loop::LoopRow& r : loop::read_loop_rows((out / "loops.csv").string()))
+    loops.accepted.push_back({r.from_t_ns, r.to_t_ns, r.T_from_to, r.T_from_to_epnp});
+  run.loops = std::move(loops);
+  return run;
+}
+
+// Runs one mode like `vilslam run`, writing its folder (a failed run leaves none), or reads that folder back.
+ModeRun run_mode(const fs::path& data, OfflineRunConfig config, RunMode mode, const fs::path& out, bool reuse) {
+  config.mode = mode;
+  if (reuse) {
+    if (std::optional<ModeRun> run = read_run_folder(out, run_config_yaml(config), mode)) {
+      spdlog::info("odometry-table: reusing {}", out.string());
+      return *run;
+    }
+  }
+  spdlog::info("odometry-table: {} on {}", run_mode_name(mode), data.string());
+  const auto reader = open_dataset(data.string());
+  OfflineRunResult result;
+  try {
+    result = run_offline(*reader, config);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    fs::remove_all(out);
+    ModeRun failed;
+    failed.failure = e.what();
+    return failed;
+  }
+  write_run_outputs(out.string(), config, result);
+  return outputs_of(result);
 }
 
 // MRE of the dense map of these LiDAR poses, as `vilslam map` then `vilslam eval-map --first-pose --gt`.
@@ -182,12 +238,18 @@ eval::OdometryRow measure_preset(const fs::path& work, const std::string& preset
     in.gt_T_W_L.push_back({g.t_ns, g.T_W_I * reader->calibration().T_I_L});
   }
   if (in.gt_T_W_I.size() < 2) throw InputError(data.string(), "has no ground truth to evaluate against");
-  const ModeRun vil = run_mode(data, config, RunMode::kVil, work / (preset + "_vil"));
-  const ModeRun lidar_only = run_mode(data, config, RunMode::kLidarOnly, work / (preset + "_lidar-only"));
-  in.vio = {vil.result.camera_states, vil.failure};
-  in.vil = lidar_poses(vil, &in.vil_degenerate, &in.vil_sweeps);
-  in.lidar_only = lidar_poses(lidar_only, &in.lidar_only_degenerate, &in.lidar_only_sweeps);
-  add_loop_closure(vil, &in);
+  const ModeRun vil = run_mode(data, config, RunMode::kVil, work / (preset + "_vil"), o.reuse_runs);
+  const ModeRun lidar_only =
+      run_mode(data, config, RunMode::kLidarOnly, work / (preset + "_lidar-only"), o.reuse_runs);
+  in.vio = {vil.camera_states, vil.failure};
+  in.vil = {vil.lidar, vil.failure};
+  in.vil_degenerate = vil.degenerate;
+  in.vil_sweeps = vil.lidar.size();
+  in.lidar_only = {lidar_only.lidar, lidar_only.failure};
+  in.lidar_only_degenerate = lidar_only.degenerate;
+  in.lidar_only_sweeps = lidar_only.lidar.size();
+  in.vil_final = {vil.lidar_final, vil.failure};
+  in.loops = vil.loops;
   eval::OdometryRow row = eval::compute_odometry_row(in);
   if (!o.no_maps) row.maps = measure_maps(data, in, row, o);
   return row;
@@ -213,6 +275,7 @@ std::string command_line(const Options& o) {
                     std::to_string(o.seed) + (o.preview ? " --preview" : "") +
                     (o.config_path.empty() ? "" : " --config " + o.config_path) +
                     (o.no_maps ? std::string(" --no-maps") : " --map-voxel " + format_voxel(o.map_voxel_m)) +
+                    (o.reuse_runs ? " --reuse-runs" : "") +
                     " --out " + o.out;
   if (!o.note.empty()) cmd += " --note '" + o.note + "'";
   return cmd;
@@ -250,6 +313,8 @@ vilslam::cli::Command reg("odometry-table",
                     ->check(CLI::PositiveNumber)
                     ->capture_default_str();
   app.add_flag("--no-maps", o->no_maps, "Do not build the dense maps (no MRE columns)")->excludes(voxel);
+  app.add_flag("--reuse-runs", o->reuse_runs,
+               "Read WORK/<preset>_<mode> instead of running when it holds a complete run made with this config");
   app.add_option("--out", o->out, "Markdown file to write")->capture_default_str();
   app.add_option("--note", o->note, "Text appended to the page (e.g. how reused simulations were made)");
   return [o]() {

@@ -131,6 +131,25 @@ TEST(CmdOdometryTable, PreviewHighbaySimulatesThenReuses) {
     EXPECT_NE(yaml.find("enabled: false"), std::string::npos) << run;
   }
   EXPECT_NE(test::read_file_bytes(page2).find(" --config " + config.string() + " --map-voxel 0.05 --out "), std::string::npos);
+
+  // --reuse-runs reads the first work folder's runs back (made with the default config): no run, same row.
+  // With another config the runs are made again.
+  const fs::path page3 = dir / "odometry3.md";
+  const fs::file_time_type vil_written = fs::last_write_time(work / "highbay_vil" / "lidar.tum");
+  const test::CliResult reused = test::run_cli("odometry-table --work " + work.string() +
+                                               " --presets highbay --seed 3 --preview --reuse-runs --out " +
+                                               page3.string());
+  ASSERT_EQ(reused.exit_code, 0) << reused.output;
+  EXPECT_NE(reused.output.find("reusing " + (work / "highbay_vil").string()), std::string::npos) << reused.output;
+  EXPECT_NE(reused.output.find("reusing " + (work / "highbay_lidar-only").string()), std::string::npos);
+  EXPECT_EQ(reused.output.find("vil on "), std::string::npos) << reused.output;
+  EXPECT_EQ(fs::last_write_time(work / "highbay_vil" / "lidar.tum"), vil_written);
+  EXPECT_EQ(after_source(table_row(test::read_file_bytes(page3), "highbay")), after_source(row));
+  const test::CliResult rerun = test::run_cli("odometry-table --work " + work2.string() +
+                                              " --presets highbay --seed 3 --preview --reuse-runs --no-maps --out " +
+                                              (dir / "odometry4.md").string());
+  ASSERT_EQ(rerun.exit_code, 0) << rerun.output;
+  EXPECT_NE(rerun.output.find("made with another config"), std::string::npos) << rerun.output;
 }
 
 TEST(CmdOdometryTable, BadInputExitsTwo) {
