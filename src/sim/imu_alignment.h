@@ -12,7 +12,6 @@
 #include <memory>
 #include <vector>
 
-#include "common/calibration.h"
 #include "common/lie.h"
 #include "common/types.h"
 #include "sim/trajectory.h"
