@@ -1,7 +1,6 @@
 #include "sim/imu_alignment.h"
 
 #include <Eigen/Dense>
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -98,14 +97,6 @@ ImuAlignment align_imu_to_motion(const BodyMotion& motion, const std::vector<Imu
   out.gyro_rms_rad_s = rms(gyro_sum_sq(rec, samples, R_B_I, b_g), samples.size());
   out.accel_rms_m_s2 = rms(accel_sum_sq(rec, samples, R_B_I, out.gravity_V_m_s2, out.accel_bias_m_s2), samples.size());
   return out;
-}
-
-ImuNoise noise_from_residuals(const ImuAlignment& alignment, const ImuNoise& datasheet) {
-  ImuNoise noise = datasheet;
-  const double sqrt_dt = std::sqrt(1.0 / datasheet.rate_hz);
-  noise.gyro_noise_density = std::max(datasheet.gyro_noise_density, alignment.gyro_rms_rad_s * sqrt_dt);
-  noise.accel_noise_density = std::max(datasheet.accel_noise_density, alignment.accel_rms_m_s2 * sqrt_dt);
-  return noise;
 }
 
 ImuAlignedMotion::ImuAlignedMotion(std::unique_ptr<BodyMotion> recorded, const ImuAlignment& alignment)

@@ -6,10 +6,12 @@
 // Neither is exactly the IMU's: B's axes are a hand-eye estimate of the IMU's, and V is levelled only
 // approximately. For EuRoC V1_01 the raw mismatch is about 2.7 deg between the measured specific force
 // at rest and V's vertical, which no gauge alignment of an estimate removes.
+//
+// The alignment only shapes the motion the images are rendered from; nothing derived from it (nor from the
+// ground truth at all) is written into the calibration the estimator reads (sim/imu_stream_noise.h).
 #include <memory>
 #include <vector>
 
-#include "common/calibration.h"
 #include "common/lie.h"
 #include "common/types.h"
 #include "sim/trajectory.h"
@@ -34,12 +36,6 @@ struct ImuAlignment {
 // with omega_B, R_V_B, a_V from the recorded motion. R_B_I stays the identity when the rates span fewer
 // than two axes. Throws std::invalid_argument for fewer than 10 samples.
 ImuAlignment align_imu_to_motion(const BodyMotion& motion, const std::vector<ImuSample>& samples);
-
-// The noise a filter should assume for the real stream: white-noise densities from the residual RMS per
-// sample (sigma_d = density * sqrt(rate), Kalibr's discrete model), never below the datasheet's; the
-// random walks stay the datasheet's. On a MAV the residual is mostly propeller vibration, which the
-// datasheet densities miss by an order of magnitude.
-ImuNoise noise_from_residuals(const ImuAlignment& alignment, const ImuNoise& datasheet);
 
 // The recorded motion re-expressed as the IMU's: T_W_I(t) = T_W_V T_V_B(t) T_B_I, with W the
 // gravity-aligned frame (the smallest rotation of V that takes g_V to -z, about the motion's first

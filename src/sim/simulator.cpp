@@ -6,13 +6,13 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
-#include <optional>
 
 #include "common/error.h"
 #include "io/dataset_writer.h"
 #include "io/euroc_tables.h"
 #include "io/trajectory_io.h"
 #include "sim/imu_alignment.h"
+#include "sim/imu_stream_noise.h"
 #include "sim/kitti_writer.h"
 #include "sim/lidar_sim.h"
 #include "sim/scan_degeneracy.h"
@@ -67,11 +67,10 @@ struct ImuStream {
   std::vector<ImuSample> samples;
   std::vector<GroundTruthState> groundtruth;
   TimeNs t0_ns = 0, t1_ns = 0;  // the sequence's time span
-  std::optional<ImuAlignment> real_imu_alignment;  // set for a real stream
 };
 
-// Re-expresses a recorded motion as the pose of the real IMU (sim/imu_alignment.h) and logs the calibration.
-ImuAlignment align_to_real_imu(Scene& scene, const std::vector<ImuSample>& samples) {
+// Re-expresses a recorded motion as the pose of the real IMU (sim/imu_alignment.h) and logs the alignment.
+void align_to_real_imu(Scene& scene, const std::vector<ImuSample>& samples) {
   const ImuAlignment a = align_imu_to_motion(*scene.motion, samples);
   const double body_deg = so3::log(a.R_B_I).norm() * 180.0 / kPi;
   const double tilt_deg = std::acos(std::clamp(-a.gravity_V_m_s2.normalized().z(), -1.0, 1.0)) * 180.0 / kPi;
@@ -83,7 +82,6 @@ ImuAlignment align_to_real_imu(Scene& scene, const std::vector<ImuSample>& sampl
                a.accel_bias_m_s2.y(), a.accel_bias_m_s2.z(), a.gyro_rms_identity_rad_s, a.gyro_rms_rad_s,
                a.accel_rms_identity_m_s2, a.accel_rms_m_s2);
   scene.motion = std::make_unique<ImuAlignedMotion>(std::move(scene.motion), a);
-  return a;
 }
 
 // The IMU and the ground truth at its timestamps: simulated, or a real stream restricted to the motion
@@ -112,7 +110,7 @@ ImuStream make_imu(const SimConfig& config, const SimulateRequest& request, Scen
       stamps.push_back(s.t_ns);
     }
     if (stamps.size() < 10) throw InputError(request.imu_path, "fewer than 10 IMU samples within the trajectory's time range");
-    out.real_imu_alignment = align_to_real_imu(scene, out.samples);
+    align_to_real_imu(scene, out.samples);
     out.groundtruth = groundtruth_at(*scene.motion, stamps);
   }
   out.t0_ns = out.samples.front().t_ns;
@@ -235,9 +233,11 @@ SequenceReport simulate(const SimConfig& config, const SimulateRequest& request)
   Scene scene = make_scene(config, request);
   RigCalibration calib = rig_calibration(config);
   const ImuStream imu = make_imu(config, request, scene);
-  if (imu.real_imu_alignment) {
-    calib.imu = noise_from_residuals(*imu.real_imu_alignment, calib.imu);
-    spdlog::info("real IMU noise written to rig.yaml: gyro {:.3g} rad/s/sqrt(Hz), accel {:.3g} m/s^2/sqrt(Hz)",
+  if (!request.imu_path.empty()) {
+    // The estimator's calibration comes from the config and the written IMU stream, never the ground truth.
+    calib.imu = noise_from_stream(imu.samples, calib.imu);
+    spdlog::info("real IMU noise written to rig.yaml (Allan deviation at the sample interval): gyro {:.3g} "
+                 "rad/s/sqrt(Hz), accel {:.3g} m/s^2/sqrt(Hz)",
                  calib.imu.gyro_noise_density, calib.imu.accel_noise_density);
   }
 

@@ -96,7 +96,7 @@ TEST(Simulate, EurocFlightKeepsTheRealImuTimestamps) {
   // The span starts where the ground truth starts (the first sample at or after it).
   EXPECT_LE(std::abs(written.front() - reader->groundtruth().front().t_ns), 5'000'000);
   EXPECT_EQ(reader->groundtruth().size(), written.size());
-  // The rig's IMU noise is the real stream's (sim/imu_alignment.h), not the simulator's datasheet.
+  // The rig's IMU noise is the real stream's (sim/imu_stream_noise.h), not the simulator's datasheet.
   EXPECT_GT(reader->calibration().imu.accel_noise_density, 2 * ImuNoise{}.accel_noise_density);
 }
 
