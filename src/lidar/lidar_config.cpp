@@ -57,6 +57,7 @@ YamlFields lidar_yaml_fields(LidarConfig& c) {
                     yaml_value("source_surface_leaf_m", g.source_surface_leaf_m),
                     yaml_value("degenerate_min_eigenvalue_per_match", g.degenerate_min_eigenvalue_per_match),
                     yaml_value("remap_degenerate_directions", g.remap_degenerate_directions),
+                    yaml_value("tilt_prior_sigma_rad", g.tilt_prior_sigma_rad),
                     yaml_value("num_neighbors", a.num_neighbors),
                     yaml_value("max_neighbor_distance_m", a.max_neighbor_distance_m),
                     yaml_value("min_line_eigen_ratio", a.min_line_eigen_ratio),
@@ -66,6 +67,9 @@ YamlFields lidar_yaml_fields(LidarConfig& c) {
 }
 
 void validate_lidar_config(const LidarConfig& c, const std::string& source) {
+  if (!(c.registration.tilt_prior_sigma_rad >= 0.0)) {
+    throw InputError(source, "registration.tilt_prior_sigma_rad must be >= 0 (0 = off)");
+  }
   if (c.rings.num_rings < 1 || c.features.half_window < 1 || c.features.sectors_per_ring < 1 ||
       c.map.edges.voxel_size_m <= 0.0 || c.map.surfaces.voxel_size_m <= 0.0) {
     throw InputError(source, "rings.num_rings, features.half_window, features.sectors_per_ring and map voxel_size_m "

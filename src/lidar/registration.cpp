@@ -27,6 +27,18 @@ std::vector<Match> match_all(const std::vector<Vec3>& points_L, const SE3& T_W_L
   return matches;
 }
 
+// The tilt prior (registration.h): the prior's up direction in L and the weight of its squared residual.
+struct TiltPrior {
+  Vec3 up_L;
+  double weight;
+};
+
+std::optional<TiltPrior> tilt_prior(const std::optional<Vec3>& up_L_prior, const RegistrationConfig& config) {
+  if (!up_L_prior || config.tilt_prior_sigma_rad <= 0.0) return std::nullopt;
+  const double ratio = config.loss_scale_m / config.tilt_prior_sigma_rad;
+  return TiltPrior{*up_L_prior, ratio * ratio};
+}
+
 Correspondences associate(const std::vector<Vec3>& edges_L, const std::vector<Vec3>& surfaces_L,
                           const FeatureMap& map, const SE3& T_W_L, const AssociationConfig& config) {
   Correspondences c;
@@ -53,7 +65,8 @@ Robust robustify(double s, RobustLoss loss, double scale) {
   return {2.0 * scale * r - c2, scale / r};
 }
 
-// The robustified normal equations H delta = -g of the residuals at T_W_L (IRLS), and the cost sum rho.
+// The robustified normal equations H delta = -g of the residuals at T_W_L (IRLS), and the cost sum rho; the
+// tilt prior enters H, g and the cost, not the point statistics (sum_sq, inliers, residuals).
 struct LinearSystem {
   Mat6 H = Mat6::Zero();
   Vec6 g = Vec6::Zero();
@@ -63,7 +76,8 @@ struct LinearSystem {
   int residuals = 0;
 };
 
-LinearSystem build_system(const Correspondences& c, const SE3& T_W_L, const RegistrationConfig& config) {
+LinearSystem build_system(const Correspondences& c, const std::optional<TiltPrior>& tilt, const SE3& T_W_L,
+                          const RegistrationConfig& config) {
   LinearSystem sys;
   const auto add = [&](const auto& r, const auto& J) {
     const double s = r.squaredNorm();
@@ -82,6 +96,12 @@ LinearSystem build_system(const Correspondences& c, const SE3& T_W_L, const Regi
     const Eigen::Matrix<double, 1, 1> r(plane_residual(T_W_L, p, &J1));
     add(r, J1);
   }
+  if (tilt) {
+    const Vec3 r = tilt_residual(T_W_L, tilt->up_L, &J3);
+    sys.H.noalias() += tilt->weight * J3.transpose() * J3;
+    sys.g.noalias() += tilt->weight * J3.transpose() * r;
+    sys.cost += tilt->weight * r.squaredNorm();
+  }
   return sys;
 }
 
@@ -89,8 +109,9 @@ double degeneracy_threshold(const LinearSystem& sys, const RegistrationConfig& c
   return config.degenerate_min_eigenvalue_per_match * sys.residuals;
 }
 
-double cost_at(const Correspondences& c, const SE3& T_W_L, const RegistrationConfig& config) {
-  double cost = 0.0;
+double cost_at(const Correspondences& c, const std::optional<TiltPrior>& tilt, const SE3& T_W_L,
+               const RegistrationConfig& config) {
+  double cost = tilt ? tilt->weight * tilt_residual(T_W_L, tilt->up_L).squaredNorm() : 0.0;
   for (const EdgeCorrespondence& e : c.edges) {
     cost += robustify(edge_residual(T_W_L, e).squaredNorm(), config.loss, config.loss_scale_m).cost;
   }
@@ -107,10 +128,11 @@ bool is_small(const Vec6& delta, const RegistrationConfig& config) {
 }
 
 // Levenberg-Marquardt on fixed correspondences, until a step is small or none lowers the cost.
-void levenberg_marquardt(const Correspondences& c, SE3& T_W_L, const Mat6& remap, const RegistrationConfig& config) {
+void levenberg_marquardt(const Correspondences& c, const std::optional<TiltPrior>& tilt, SE3& T_W_L, const Mat6& remap,
+                         const RegistrationConfig& config) {
   double lambda = 1e-4;
   for (int it = 0; it < config.max_inner_iterations; ++it) {
-    const LinearSystem sys = build_system(c, T_W_L, config);
+    const LinearSystem sys = build_system(c, tilt, T_W_L, config);
     bool accepted = false;
     Vec6 step = Vec6::Zero();
     for (int attempt = 0; attempt < 8 && !accepted; ++attempt) {
@@ -119,7 +141,7 @@ void levenberg_marquardt(const Correspondences& c, SE3& T_W_L, const Mat6& remap
       // Zhang et al. 2016 solution remapping: the update moves only along well-conditioned directions.
       step = remap * damped.ldlt().solve(-sys.g);
       const SE3 candidate = T_W_L * SE3::exp(step);
-      if (cost_at(c, candidate, config) < sys.cost) {
+      if (cost_at(c, tilt, candidate, config) < sys.cost) {
         T_W_L = candidate;
         lambda = std::max(lambda / 10.0, 1e-7);
         accepted = true;
@@ -141,7 +163,8 @@ std::vector<Vec3> positions(const std::vector<FeaturePoint>& points, double leaf
 }  // namespace
 
 RegistrationResult register_scan(const FeatureScan& features_L, const FeatureMap& map, const SE3& T_W_L_init,
-                                 const RegistrationConfig& config) {
+                                 const RegistrationConfig& config, const std::optional<Vec3>& up_L_prior) {
+  const std::optional<TiltPrior> tilt = tilt_prior(up_L_prior, config);
   const std::vector<Vec3> edges_L = positions(features_L.edges, config.source_edge_leaf_m);
   const std::vector<Vec3> surfaces_L = positions(features_L.surfaces, config.source_surface_leaf_m);
   RegistrationResult result;
@@ -153,12 +176,13 @@ RegistrationResult register_scan(const FeatureScan& features_L, const FeatureMap
     const Correspondences c = associate(edges_L, surfaces_L, map, result.T_W_L, config.association);
     if (c.edges.size() + c.planes.size() < 6) break;
     if (outer == 0 && config.remap_degenerate_directions) {
-      // Zhang et al. 2016 compute the degenerate directions once, at the initial guess.
-      const LinearSystem sys = build_system(c, result.T_W_L, config);
+      // Zhang et al. 2016 compute the degenerate directions once, at the initial guess. The tilt prior's
+      // information counts: a tilt the map leaves free is then not frozen at the initial guess but follows the prior.
+      const LinearSystem sys = build_system(c, tilt, result.T_W_L, config);
       remap = analyze_degeneracy(sys.H, degeneracy_threshold(sys, config)).well_conditioned_projection;
     }
     const SE3 before = result.T_W_L;
-    levenberg_marquardt(c, result.T_W_L, remap, config);
+    levenberg_marquardt(c, tilt, result.T_W_L, remap, config);
     result.outer_iterations = outer + 1;
     // Converged when re-associating no longer moves the pose.
     if (is_small((before.inverse() * result.T_W_L).log(), config)) {
@@ -167,7 +191,7 @@ RegistrationResult register_scan(const FeatureScan& features_L, const FeatureMap
     }
   }
   const Correspondences c = associate(edges_L, surfaces_L, map, result.T_W_L, config.association);
-  const LinearSystem sys = build_system(c, result.T_W_L, config);
+  const LinearSystem sys = build_system(c, tilt, result.T_W_L, config);
   const int matched = static_cast<int>(c.edges.size() + c.planes.size());
   result.num_edge_matches = static_cast<int>(c.edges.size());
   result.num_surface_matches = static_cast<int>(c.planes.size());

@@ -2,6 +2,8 @@
 // Scan-to-map registration (paper Sec. "Scan to map registration", after LOAM): the dewarped feature points
 // are matched to lines and planes of the map and the LiDAR pose is refined by Levenberg-Marquardt on the
 // robustified point-to-line and point-to-plane distances, re-associating between outer iterations.
+#include <optional>
+
 #include "lidar/correspondences.h"
 #include "lidar/degeneracy.h"
 #include "lidar/feature_map.h"
@@ -25,6 +27,11 @@ struct RegistrationConfig {
   // depend on how many features the scan has.
   double degenerate_min_eigenvalue_per_match = 0.01;
   bool remap_degenerate_directions = false;  // keep the initial (prior) motion along degenerate directions
+  // Tilt prior (beyond the paper, as LIO systems use the IMU): the LiDAR's roll and pitch are pulled towards a
+  // gravity-referenced prior's (the VIO's) with this sigma (0.3 deg, the order of the VIO's tilt error; chosen on
+  // the tuning seeds, docs/lidar.md); weight (loss_scale_m / sigma)^2 against the point residuals. Used only
+  // when register_scan is given the prior's up direction; 0 = off.
+  double tilt_prior_sigma_rad = 0.00524;
 };
 
 struct RegistrationResult {
@@ -42,7 +49,11 @@ struct RegistrationResult {
 };
 
 // Registers dewarped features (LiDAR frame at the scan end) to the map, starting from T_W_L_init.
+// up_L_prior: the world's up e_z in the LiDAR frame at the scan end from a gravity-referenced motion prior
+// (R_W_L_prior^T e_z); with config.tilt_prior_sigma_rad > 0 it adds the tilt prior, whose information also
+// enters the degeneracy analysis (so a tilt the map does not constrain follows the prior, not the initial guess).
 RegistrationResult register_scan(const FeatureScan& features_L, const FeatureMap& map, const SE3& T_W_L_init,
-                                 const RegistrationConfig& config);
+                                 const RegistrationConfig& config,
+                                 const std::optional<Vec3>& up_L_prior = std::nullopt);
 
 }  // namespace vilslam::lidar

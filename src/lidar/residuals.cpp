@@ -26,4 +26,11 @@ double plane_residual(const SE3& T_W_L, const PlaneCorrespondence& c, Jacobian1x
   return c.normal_W.dot(T_W_L * c.p_L) + c.offset_m;
 }
 
+Vec3 tilt_residual(const SE3& T_W_L, const Vec3& up_L_prior, Jacobian3x6* J) {
+  const Vec3 up_L = T_W_L.rotation().transpose() * Vec3::UnitZ();
+  // (R Exp(phi))^T e_z = Exp(-phi) v ~ v - phi x v = v + [v]x phi.
+  if (J) *J << Mat3::Zero(), so3::hat(up_L);
+  return up_L - up_L_prior;
+}
+
 }  // namespace vilslam::lidar

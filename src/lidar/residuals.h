@@ -29,5 +29,8 @@ using Jacobian1x6 = Eigen::Matrix<double, 1, 6>;
 Vec3 edge_residual(const SE3& T_W_L, const EdgeCorrespondence& c, Jacobian3x6* J = nullptr);
 // n . (T p) + d: the signed point-to-plane distance (paper r_U).
 double plane_residual(const SE3& T_W_L, const PlaneCorrespondence& c, Jacobian1x6* J = nullptr);
+// Tilt prior: R_W_L^T e_z - up_L_prior, the world's up seen in L against a gravity-referenced prior's (VIO).
+// Its Jacobian is [v]x on phi (v = R_W_L^T e_z) and 0 on rho; it does not see yaw (rotation about v).
+Vec3 tilt_residual(const SE3& T_W_L, const Vec3& up_L_prior, Jacobian3x6* J = nullptr);
 
 }  // namespace vilslam::lidar

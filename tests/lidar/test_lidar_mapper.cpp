@@ -184,15 +184,36 @@ TEST(LidarMapper, KeepsThePriorAlongTheLoopCorridor) {
   expect_prior_kept_along_axis(a, int(seq.scans.size()));
 }
 
-TEST(LidarMapper, IsDeterministic) {
-  const Sequence seq = simulate(sim::Scenario::kHighbay, 5.0, 6);
-  const Errors a = run(seq, LidarMapperConfig{}, seq.T_W_I);
-  const Errors b = run(seq, LidarMapperConfig{}, seq.T_W_I);
+void expect_identical(const Errors& a, const Errors& b) {
   ASSERT_EQ(a.poses.size(), b.poses.size());
   for (std::size_t k = 0; k < a.poses.size(); ++k) {
     const Mat4 Ta = a.poses[k].matrix(), Tb = b.poses[k].matrix();
     EXPECT_EQ(std::memcmp(Ta.data(), Tb.data(), sizeof(double) * 16), 0) << "scan " << k;
   }
+}
+
+LidarMapperConfig without_tilt_prior() {
+  LidarMapperConfig c;
+  c.lidar.registration.tilt_prior_sigma_rad = 0.0;
+  return c;
+}
+
+TEST(LidarMapper, IsDeterministic) {
+  const Sequence seq = simulate(sim::Scenario::kHighbay, 5.0, 6);
+  expect_identical(run(seq, LidarMapperConfig{}, seq.T_W_I), run(seq, LidarMapperConfig{}, seq.T_W_I));
+  expect_identical(run(seq, without_tilt_prior(), seq.T_W_I), run(seq, without_tilt_prior(), seq.T_W_I));
+}
+
+TEST(LidarMapper, TiltPriorActsOnlyWithAPrior) {
+  const Sequence seq = simulate(sim::Scenario::kHighbay, 5.0, 6);
+  ASSERT_GT(LidarMapperConfig{}.lidar.registration.tilt_prior_sigma_rad, 0.0);  // on by default
+  // LiDAR-only mapping has no prior: the setting changes nothing.
+  expect_identical(run(seq, LidarMapperConfig{}, nullptr), run(seq, without_tilt_prior(), nullptr));
+  // With the (true) prior it takes part.
+  const Errors on = run(seq, LidarMapperConfig{}, seq.T_W_I), off = run(seq, without_tilt_prior(), seq.T_W_I);
+  EXPECT_NE(off.poses.back().translation(), on.poses.back().translation());
+  EXPECT_LT(on.max_translation_m, 0.05);
+  EXPECT_LT(on.max_rotation_deg, 0.5);
 }
 
 TEST(LidarMapper, RejectsEmptyAndOutOfOrderScans) {

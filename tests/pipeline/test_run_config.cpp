@@ -71,6 +71,7 @@ TEST(RunConfig, BadFilesNameTheFileAndTheKey) {
       {"vio:\n  smoother:\n    pixel_sigma_px: .nan\n", "vio.smoother.pixel_sigma_px"},
       {"lidar_mapper:\n  rings:\n    num_rings: 0\n", "rings.num_rings"},
       {"lidar_mapper:\n  registration:\n    loss: l2\n", "lidar_mapper.registration.loss"},
+      {"lidar_mapper:\n  registration:\n    tilt_prior_sigma_rad: -0.01\n", "tilt_prior_sigma_rad"},
       {"lidar_mapper:\n  mapper:\n    dewrap: true\n", "lidar_mapper.mapper.dewrap"},
       {"vio: [1, 2]\n", "'vio'"},
       {"- 1\n- 2\n", "map"},
