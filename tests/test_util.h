@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -15,16 +16,40 @@
 
 namespace vilslam::test {
 
-// Absolute path of a file or folder in ../shared/data, or "" when the data is absent.
+// The shared real-data folder: the environment's VILSLAM_SHARED_DATA, else ../shared/data (CMake cache).
+inline std::string shared_data_root() {
+  const char* env = std::getenv("VILSLAM_SHARED_DATA");
+  return env != nullptr && *env != '\0' ? std::string(env) : std::string(VILSLAM_SHARED_DATA);
+}
+
+// Absolute path of a file or folder in the shared data, or "" when the data is absent.
 inline std::string shared_data(const std::string& relative) {
-  const std::filesystem::path p = std::filesystem::path(VILSLAM_SHARED_DATA) / relative;
+  const std::filesystem::path p = std::filesystem::path(shared_data_root()) / relative;
   return std::filesystem::exists(p) ? p.string() : std::string();
 }
 
-// Skips the current test with a message naming the missing path.
-#define VILSLAM_REQUIRE_SHARED_DATA(var, relative)                                        \
-  const std::string var = ::vilslam::test::shared_data(relative);                         \
-  if (var.empty()) GTEST_SKIP() << "shared data absent: " << VILSLAM_SHARED_DATA << "/" << relative
+// True when the environment says CI=true: there, real-data tests must not skip.
+inline bool under_ci() {
+  const char* ci = std::getenv("CI");
+  return ci != nullptr && std::string(ci) == "true";
+}
+
+// Prints the line scripts/test counts ("[real data] ran Suite.Name: PATH").
+inline void log_real_data_use(const std::string& path) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::printf("[real data] ran %s.%s: %s\n", info->test_suite_name(), info->name(), path.c_str());
+}
+
+// Binds var to the shared-data path. When it is absent the test fails under CI and skips elsewhere, with a
+// message naming the missing path ("shared data absent: ..."; scripts/test counts both outcomes).
+#define VILSLAM_REQUIRE_SHARED_DATA(var, relative)                                                            \
+  const std::string var = ::vilslam::test::shared_data(relative);                                             \
+  if (var.empty()) {                                                                                          \
+    if (::vilslam::test::under_ci())                                                                          \
+      FAIL() << "shared data absent under CI=true: " << ::vilslam::test::shared_data_root() << "/" << (relative); \
+    GTEST_SKIP() << "shared data absent: " << ::vilslam::test::shared_data_root() << "/" << (relative);        \
+  }                                                                                                           \
+  ::vilslam::test::log_real_data_use(var)
 
 // The whole file as bytes ("" when it cannot be read).
 inline std::string read_file_bytes(const std::filesystem::path& path) {
