@@ -47,13 +47,16 @@ Scene make_scene(const SimConfig& config, const SimulateRequest& request) {
   if (request.duration_s > 0 && length_m <= 0)
     length_m = motion_config.cruise_speed_m_s *
                (request.duration_s - motion_config.rest_start_s - motion_config.rest_end_s - motion_config.ramp_s);
-  Scene scene{World::generate(request.scenario, request.seed, std::max(0.0, length_m)), nullptr};
   if (!request.trajectory_path.empty()) {
     const Trajectory poses = read_trajectory(request.trajectory_path, TrajectoryFormat::kTum);
     if (poses.size() < 2) throw InputError(request.trajectory_path, "needs at least 2 poses");
+    Eigen::AlignedBox3d flight_W;
+    for (const TimedPose& pose : poses) flight_W.extend(pose.T_W_B.translation());
+    Scene scene{World::generate(request.scenario, request.seed, std::max(0.0, length_m), flight_W), nullptr};
     scene.motion = std::make_unique<PoseSplineMotion>(poses, config.pose_spline);
     return scene;
   }
+  Scene scene{World::generate(request.scenario, request.seed, std::max(0.0, length_m)), nullptr};
   if (request.duration_s > 0) {
     const RouteMotion probe(scene.world.route_W(), motion_config);
     motion_config.cruise_speed_m_s =

@@ -65,7 +65,8 @@ std::pair<double, double> length_range_m(Scenario scenario) {
 
 }  // namespace
 
-World World::generate(Scenario scenario, std::uint64_t seed, double target_length_m) {
+World World::generate(Scenario scenario, std::uint64_t seed, double target_length_m,
+                      const std::optional<Eigen::AlignedBox3d>& flight_W) {
   const auto [lo, hi] = length_range_m(scenario);
   if (!(target_length_m == 0 || (target_length_m >= lo && target_length_m <= hi))) {
     throw std::invalid_argument("target length for " + scenario_name(scenario) + " must be 0 (the preset) or within [" +
@@ -79,7 +80,7 @@ World World::generate(Scenario scenario, std::uint64_t seed, double target_lengt
     case Scenario::kTunnel: build_tunnel(builder, length_m); break;
     case Scenario::kLoop: build_loop(builder, length_m); break;
     case Scenario::kOutdoor: build_outdoor(builder, length_m); break;
-    case Scenario::kRoom: build_room(builder, length_m); break;
+    case Scenario::kRoom: build_room(builder, length_m, flight_W); break;
   }
   auto impl = std::make_unique<Impl>();
   impl->scenario = scenario;

@@ -41,8 +41,10 @@ class World {
   // Builds the scenario from the seed. target_length_m > 0 sizes the route (and the world around it)
   // to about that length; 0 uses the preset length. Throws std::invalid_argument for a length the
   // scenario cannot be built at (highbay >= 40 m, hallway and tunnel >= 20, loop >= 160, outdoor >= 100,
-  // room 8..16.5, all <= 5000).
-  static World generate(Scenario scenario, std::uint64_t seed, double target_length_m = 0);
+  // room 8..16.5, all <= 5000). flight_W (room only): bounds of a recorded flight's positions that the
+  // room must hold with a margin.
+  static World generate(Scenario scenario, std::uint64_t seed, double target_length_m = 0,
+                        const std::optional<Eigen::AlignedBox3d>& flight_W = std::nullopt);
   ~World();
   World(World&&) noexcept;
   World& operator=(World&&) noexcept;
