@@ -17,7 +17,7 @@ namespace {
 const Eigen::AlignedBox3d kRoom(Vec3(-4.5, -3.6, 0.0), Vec3(3.7, 4.6, 4.0));
 const Eigen::Vector2d kRouteCenter(0.0, 0.5);
 constexpr double kWallMarginM = 1.5;     // a grown room's walls stand this far from the flight
-constexpr double kFloorMarginM = 0.3;    // its floor this far below the lowest body position (a take-off stand)
+constexpr double kFloorMarginM = 0.7;    // its floor this far below the lowest position (above the floor mats)
 constexpr double kCeilingMarginM = 2.0;  // its ceiling this far above the highest
 
 // Where the clutter goes: the Vicon room's hand-placed layout, or the same scaled to a grown room.

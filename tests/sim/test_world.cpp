@@ -129,27 +129,65 @@ TEST(World, ParseScenarioRoundTripsAndRejectsUnknownNames) {
   EXPECT_THROW(parse_scenario("cave"), std::invalid_argument);
 }
 
+// Every 20th position of a TUM ground-truth file.
+std::vector<Vec3> flight_positions(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<Vec3> positions;
+  std::string line;
+  for (int n = 0; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#' || n++ % 20) continue;
+    std::istringstream ss(line);
+    double t;
+    Vec3 p;
+    ss >> t >> p.x() >> p.y() >> p.z();
+    positions.push_back(p);
+  }
+  return positions;
+}
+
+// The flight stays inside the world, clear of its surfaces.
+void expect_flight_inside(const World& world, const std::vector<Vec3>& flight, const std::string& name) {
+  EXPECT_GT(flight.size(), 50u) << name;
+  double clearance = 1e9;
+  for (const Vec3& p : flight) {
+    EXPECT_TRUE(world.bounds().contains(p)) << name << " " << p.transpose();
+    clearance = std::min(clearance, world.distance_to_surface(p));
+  }
+  EXPECT_GT(clearance, 0.3) << name;
+}
+
 TEST(World, RoomContainsTheEurocV1Trajectories) {
   VILSLAM_REQUIRE_SHARED_DATA(dir, "euroc/groundtruth");
   const World world = World::generate(Scenario::kRoom, 1);
   for (const char* name : {"V1_01_easy.txt", "V1_02_medium.txt", "V1_03_difficult.txt"}) {
-    std::ifstream in(dir + "/" + name);
-    ASSERT_TRUE(in) << name;
-    std::string line;
-    double clearance = 1e9;
-    int n = 0;
-    while (std::getline(in, line)) {
-      if (line.empty() || line[0] == '#') continue;
-      std::istringstream ss(line);
-      double t;
-      Vec3 p;
-      ss >> t >> p.x() >> p.y() >> p.z();
-      if (n++ % 20) continue;
-      EXPECT_TRUE(world.bounds().contains(p)) << name << " " << p.transpose();
-      clearance = std::min(clearance, world.distance_to_surface(p));
+    const std::vector<Vec3> flight = flight_positions(dir + "/" + name);
+    expect_flight_inside(world, flight, name);
+    // A flight the Vicon room holds gets that room, not a grown one.
+    Eigen::AlignedBox3d box;
+    for (const Vec3& p : flight) box.extend(p);
+    EXPECT_TRUE(World::generate(Scenario::kRoom, 1, 0, box).bounds().isApprox(world.bounds())) << name;
+  }
+}
+
+TEST(World, RoomGrowsAroundMachineHallFlightsAndEveryViewHitsAWall) {
+  VILSLAM_REQUIRE_SHARED_DATA(dir, "euroc/groundtruth");
+  for (const char* name : {"MH_01_easy.txt", "MH_03_medium.txt", "MH_05_difficult.txt"}) {
+    const std::vector<Vec3> flight = flight_positions(dir + "/" + name);
+    Eigen::AlignedBox3d box;
+    for (const Vec3& p : flight) box.extend(p);
+    ASSERT_FALSE(World::generate(Scenario::kRoom, 1).bounds().contains(box)) << name << ": fits the Vicon room";
+    const World world = World::generate(Scenario::kRoom, 1, 0, box);
+    expect_flight_inside(world, flight, name);
+    // No blank views: rays in 26 directions from every 10th sampled position hit a surface within 30 m.
+    for (std::size_t i = 0; i < flight.size(); i += 10) {
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dz = -1; dz <= 1; ++dz) {
+            if (dx == 0 && dy == 0 && dz == 0) continue;
+            const Vec3 dir_W = Vec3(dx, dy, dz).normalized();
+            EXPECT_TRUE(world.raycast(flight[i], dir_W, 30.0)) << name << " from " << flight[i].transpose();
+          }
     }
-    EXPECT_GT(n, 1000) << name;
-    EXPECT_GT(clearance, 0.3) << name;
   }
 }
 
