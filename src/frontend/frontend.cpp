@@ -106,6 +106,7 @@ void Frontend::reject_temporal_outliers(std::vector<Track>* tracks, const std::v
   const MotionEstimate motion = estimate_motion_pnp(p_C0prev, xy_cur, rig_.cam0.focal_px(), config_);
   stats_.motion_valid = motion.valid;
   if (!motion.valid) return;
+  stats_.T_C0cur_C0prev = motion.T_C0cur_C0prev;
   std::vector<Track> kept;
   for (std::size_t i = 0; i < tracks->size(); ++i) {
     const Track& t = (*tracks)[i];

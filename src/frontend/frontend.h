@@ -21,6 +21,7 @@ struct FrontendStats {
   int refine_rejected = 0;    // new matches whose left -> right KLT refinement failed or moved too far
   int temporal_rejected = 0;  // tracked matches inconsistent with the frame-to-frame motion
   bool motion_valid = false;  // the PnP motion estimate was available for the temporal check
+  SE3 T_C0cur_C0prev;         // that estimate (left camera, previous pair to this one) when motion_valid
   int corners_left = 0;       // Shi-Tomasi corners surviving elimination (0 when no extraction ran)
   int corners_right = 0;
 };

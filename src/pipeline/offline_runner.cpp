@@ -7,9 +7,12 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include <spdlog/spdlog.h>
+
 #include "common/error.h"
 #include "frontend/frontend.h"
 #include "pipeline/lidar_feeder.h"
+#include "pipeline/time_offset_pass.h"
 
 namespace vilslam {
 namespace {
@@ -105,23 +108,38 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
   check_mode_fits(reader, config.mode);
   const DatasetSummary& summary = reader.summary();
   OfflineRunResult result;
+  RigCalibration calib = reader.calibration();
+  if (config.time_offset.enabled && config.mode != RunMode::kLidarOnly) {
+    result.time_offset = estimate_sequence_time_offset(reader, config.frontend, config.time_offset);
+    if (result.time_offset) {
+      calib.cam_time_offset_ns = s_to_ns(result.time_offset->offset_s);
+      spdlog::info("camera-IMU time offset {:.2f} ms (t_imu = t_cam + offset) from {} intervals, residual {:.5f} "
+                   "rad ({:.5f} at 0)",
+                   1e3 * result.time_offset->offset_s, result.time_offset->intervals, result.time_offset->rms_rad,
+                   result.time_offset->rms_zero_offset_rad);
+    } else {
+      spdlog::warn("camera-IMU time offset not observable in the first {} s (too little rotation or tracking); "
+                   "keeping the calibration's {} ns",
+                   config.time_offset.window_s, calib.cam_time_offset_ns);
+    }
+  }
   std::optional<VioFeeder> vio;
-  if (config.mode != RunMode::kLidarOnly) vio.emplace(reader.calibration(), config, &result);
+  if (config.mode != RunMode::kLidarOnly) vio.emplace(calib, config, &result);
   std::optional<LoopClosureModule> loop;
   if (config.mode == RunMode::kVil) {
     std::shared_ptr<const Vocabulary> vocabulary;
     if (config.loop.enabled) vocabulary = std::make_shared<const Vocabulary>(Vocabulary::load(
           config.vocabulary == "default" ? default_vocabulary_path() : config.vocabulary));
-    loop.emplace(config.loop, config.graph, vocabulary, reader.calibration(), config.frontend, config.lidar.lidar,
+    loop.emplace(config.loop, config.graph, vocabulary, calib, config.frontend, config.lidar.lidar,
                  &result.imu_motion);
   }
   std::optional<LidarFeeder> lidar;
   if (config.mode != RunMode::kVio) {
-    lidar.emplace(config.lidar, reader.calibration(), vio ? &result.imu_poses : nullptr,
+    lidar.emplace(config.lidar, calib, vio ? &result.imu_poses : nullptr,
                   vio ? &result.imu_motion : nullptr, &result.lidar,
                   loop ? &*loop : nullptr);
   }
-  const TimeNs cam_offset_ns = reader.calibration().cam_time_offset_ns;
+  const TimeNs cam_offset_ns = calib.cam_time_offset_ns;
   reader.rewind();
   // The IMU stream may run on long after the last image (EuRoC slices): stop once every frame is in.
   const auto all_frames_in = [&] { return vio && result.matches_per_frame.size() >= summary.stereo_frames && vio->idle(); };

@@ -15,6 +15,7 @@
 #include "loop/global_pose_graph.h"
 #include "loop/loop_closer.h"
 #include "pipeline/loop_closure_module.h"
+#include "vio/time_offset.h"
 #include "vio/vio.h"
 
 namespace vilslam {
@@ -36,6 +37,7 @@ struct OfflineRunConfig {
   loop::LoopClosureConfig loop;         // vil mode only (it needs key images)
   loop::GlobalPoseGraphConfig graph;
   std::string vocabulary = "default";   // a vocabulary file, or "default": default_vocabulary_path()
+  TimeOffsetConfig time_offset;          // vio and vil: estimate the camera-IMU time offset before the run
 };
 
 struct OfflineRunResult {
@@ -49,6 +51,7 @@ struct OfflineRunResult {
   std::vector<lidar::LidarMappingResult> lidar;  // one per mapped sweep
   std::size_t unmapped_scans = 0;  // vil: sweeps no VIO pose covered
   std::optional<LoopClosureOutput> loop;  // vil: odometry, loop-corrected poses, loop candidates
+  std::optional<TimeOffsetEstimate> time_offset;  // when estimated (config.time_offset.enabled) and observable
 };
 
 // Runs the whole sequence. Throws InputError for bad input, including a mode the dataset cannot serve

@@ -12,13 +12,33 @@ YamlFields graph_yaml_fields(loop::GlobalPoseGraphConfig& c) {
           yaml_value("anchor_spacing", c.anchor_spacing), yaml_value("max_anchors", c.max_anchors)};
 }
 
+YamlFields time_offset_yaml_fields(TimeOffsetConfig& c) {
+  return {yaml_value("enabled", c.enabled), yaml_value("window_s", c.window_s),
+          yaml_value("max_abs_offset_s", c.max_abs_offset_s), yaml_value("grid_step_s", c.grid_step_s),
+          yaml_value("min_rotation_rad_s", c.min_rotation_rad_s), yaml_value("min_intervals", c.min_intervals)};
+}
+
 YamlFields run_yaml_fields(OfflineRunConfig& c) {
   YamlFields loop_fields = loop::loop_closure_yaml_fields(c.loop);
   loop_fields.push_back(yaml_value("vocabulary", c.vocabulary));
   loop_fields.push_back(yaml_section("graph", graph_yaml_fields(c.graph)));
   return {yaml_section("frontend", frontend_yaml_fields(c.frontend)), yaml_section("vio", vio_yaml_fields(c.vio)),
           yaml_section("lidar_mapper", lidar::lidar_mapper_yaml_fields(c.lidar)),
-          yaml_section("loop_closure", std::move(loop_fields))};
+          yaml_section("loop_closure", std::move(loop_fields)),
+          yaml_section("time_offset", time_offset_yaml_fields(c.time_offset))};
+}
+
+void validate_time_offset_config(const TimeOffsetConfig& c, const std::string& path) {
+  const auto positive = [&](double v, const char* key) {
+    if (!(v > 0)) throw InputError(path, std::string("'time_offset.") + key + "' must be positive");
+  };
+  positive(c.window_s, "window_s");
+  positive(c.max_abs_offset_s, "max_abs_offset_s");
+  positive(c.grid_step_s, "grid_step_s");
+  if (!(c.min_rotation_rad_s >= 0)) throw InputError(path, "'time_offset.min_rotation_rad_s' must be >= 0");
+  if (c.min_intervals < 3) throw InputError(path, "'time_offset.min_intervals' must be at least 3");
+  if (c.grid_step_s > c.max_abs_offset_s)
+    throw InputError(path, "'time_offset.grid_step_s' must not exceed 'time_offset.max_abs_offset_s'");
 }
 
 void validate_graph_config(const loop::GlobalPoseGraphConfig& c, const std::string& path) {
@@ -43,6 +63,7 @@ OfflineRunConfig load_run_config(const std::string& path) {
   lidar::validate_lidar_config(c.lidar.lidar, path);
   loop::validate_loop_closure_config(c.loop, path);
   validate_graph_config(c.graph, path);
+  validate_time_offset_config(c.time_offset, path);
   return c;
 }
 

@@ -57,6 +57,22 @@ std::string timings_json(RunMode mode, const OfflineRunResult& r) {
   return json.str();
 }
 
+// The estimated camera-IMU time offset (t_imu = t_cam + offset) and how well it explains the rotations.
+std::string time_offset_json(const TimeOffsetEstimate& e) {
+  JsonWriter json;
+  json.begin_object();
+  json.key("cam_time_offset_s").value(e.offset_s);
+  json.key("cam_time_offset_ns").value(static_cast<std::int64_t>(s_to_ns(e.offset_s)));
+  json.key("gyro_bias_rad_s").begin_array();
+  for (int i = 0; i < 3; ++i) json.value(e.gyro_bias_rad_s(i));
+  json.end_array();
+  json.key("intervals").value(e.intervals);
+  json.key("rms_rad").value(e.rms_rad);
+  json.key("rms_zero_offset_rad").value(e.rms_zero_offset_rad);
+  json.end_object();
+  return json.str();
+}
+
 // One row per mapped sweep: t_ns, degenerate (0/1), the six eigenvalues of J^T J in ascending order, and
 // the registration's fit (rms residual, matched and inlier fractions).
 std::string degeneracy_csv(const std::vector<lidar::LidarMappingResult>& mapped) {
@@ -100,6 +116,7 @@ void write_run_outputs(const std::string& out_dir, const OfflineRunConfig& confi
     write_file_atomic((partial / "degeneracy.csv").string(), degeneracy_csv(result.lidar));
   }
   write_file_atomic((partial / "timings.json").string(), timings_json(mode, result));
+  if (result.time_offset) write_file_atomic((partial / "time_offset.json").string(), time_offset_json(*result.time_offset));
   write_file_atomic((partial / "config.yaml").string(), run_config_yaml(config));
   fs::remove_all(out);
   fs::rename(partial, out);

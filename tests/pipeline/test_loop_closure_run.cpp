@@ -1,6 +1,7 @@
 // Loop closure inside `vilslam run --mode vil` on a short closed route (the room preset, 8 m, one lap): the
 // return to the start is detected and every accepted loop is true against ground truth, the outputs are
 // consistent with each other, bit-identical over two runs, and `loop_closure.enabled: false` turns it off.
+// The same lap with its camera stamps delayed shows the camera-IMU time offset estimation.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include "io/dataset_groundtruth.h"
 #include "io/trajectory_io.h"
 #include "loop/loop_constraints_io.h"
+#include "pipeline/time_offset_pass.h"
 #include "test_util.h"
 
 namespace vilslam {
@@ -53,6 +55,40 @@ class LoopClosureRun : public ::testing::Test {
 };
 fs::path* LoopClosureRun::data_ = nullptr;
 fs::path* LoopClosureRun::runs_ = nullptr;
+
+// The dataset with every stereo pair stamped delay_ns late (as a camera driver with an unknown latency):
+// the calibration's t_imu = t_cam + offset then needs offset = -delay_ns.
+class DelayedCameraReader : public DatasetReader {
+ public:
+  DelayedCameraReader(std::unique_ptr<DatasetReader> inner, TimeNs delay_ns)
+      : inner_(std::move(inner)), delay_ns_(delay_ns) {}
+  std::optional<SensorEvent> next() override {
+    std::optional<SensorEvent> event = inner_->next();
+    if (event && std::holds_alternative<StereoFrame>(event->data)) {
+      event->t_ns += delay_ns_;
+      std::get<StereoFrame>(event->data).t_ns += delay_ns_;
+    }
+    return event;
+  }
+  void rewind() override { inner_->rewind(); }
+  const RigCalibration& calibration() const override { return inner_->calibration(); }
+  const DatasetSummary& summary() const override { return inner_->summary(); }
+  const std::vector<GroundTruthState>& groundtruth() const override { return inner_->groundtruth(); }
+
+ private:
+  std::unique_ptr<DatasetReader> inner_;
+  TimeNs delay_ns_;
+};
+
+TEST_F(LoopClosureRun, EstimatesAnUnknownCameraDelayWithinOneMillisecond) {
+  for (const TimeNs delay_ns : {5'000'000, -8'000'000}) {
+    DelayedCameraReader reader(open_dataset(data_->string()), delay_ns);
+    const auto estimate = estimate_sequence_time_offset(reader, FrontendConfig{}, TimeOffsetConfig{});
+    ASSERT_TRUE(estimate) << delay_ns;
+    EXPECT_NEAR(estimate->offset_s, -ns_to_s(delay_ns), 0.001) << delay_ns;
+    EXPECT_LT(estimate->rms_rad, estimate->rms_zero_offset_rad) << delay_ns;
+  }
+}
 
 TEST_F(LoopClosureRun, DetectsTheReturnWithTrueConstraints) {
   const std::vector<loop::LoopRow> rows = loop::read_loop_rows((*runs_ / "a" / "loops.csv").string());
