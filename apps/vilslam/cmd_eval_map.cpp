@@ -118,8 +118,9 @@ vilslam::cli::Command reg("eval-map", "Map registration error (MRE) of a map clo
                 config.align ? o->icp.c_str() : "off", e.icp.iterations, e.icp.converged ? "converged" : "not converged",
                 e.icp.inliers, e.icp.rmse_m);
     if (config.align)
-      std::printf("ICP moved the map from the initial alignment by %s\n",
-                  pose_text(e.icp.T_model_map * config.initial.T_model_map.inverse()).c_str());
+      std::printf("ICP moved the map from the initial alignment by %s (%d unconstrained directions kept)\n",
+                  pose_text(e.icp.T_model_map * config.initial.T_model_map.inverse()).c_str(),
+                  e.icp.degenerate_directions);
     std::printf("MRE: mean %.5f m  median %.5f m  p95 %.5f m\n", e.mean_m, e.median_m, e.p95_m);
     if (config.align && !e.icp.converged)
       std::fprintf(stderr, "warning: ICP did not converge; the map may not start close to the model's frame "

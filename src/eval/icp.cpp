@@ -70,6 +70,24 @@ NormalEquations point_to_plane_system(const std::vector<Vec3>& moved, const std:
       });
 }
 
+// Solves A x = b on the eigen-directions of A with eigenvalue >= min_eigenvalue; x has no component along
+// the others (the pseudo-inverse restricted to the constrained subspace). Counts the dropped directions.
+Vec6 solve_constrained(const Mat6& A, const Vec6& b, double min_eigenvalue, int* dropped) {
+  const Eigen::SelfAdjointEigenSolver<Mat6> eig(A);
+  Vec6 x = Vec6::Zero();
+  *dropped = 0;
+  for (int k = 0; k < 6; ++k) {
+    const double lambda = eig.eigenvalues()(k);
+    if (lambda < min_eigenvalue) {
+      ++*dropped;
+      continue;
+    }
+    const Vec6 v = eig.eigenvectors().col(k);
+    x += v * (v.dot(b) / lambda);
+  }
+  return x;
+}
+
 }  // namespace
 
 std::vector<Eigen::Vector3f> estimate_normals(const PointIndex& model, std::size_t neighbours) {
@@ -111,7 +129,8 @@ IcpResult align_icp(const std::vector<Eigen::Vector3f>& map, const PointIndex& m
     if (to_plane) {
       const NormalEquations eq = point_to_plane_system(moved, match, model, model_normals);
       if (eq.count < 6) throw std::invalid_argument("ICP: fewer than 6 correspondences within range");
-      const Vec6 x = eq.A.ldlt().solve(eq.b);
+      const Vec6 x = solve_constrained(eq.A, eq.b, config.min_eigenvalue_per_match * static_cast<double>(eq.count),
+                                       &result.degenerate_directions);
       update = SE3(so3::exp_quat(x.head<3>()), x.tail<3>());
       result.inliers = eq.count;
       result.rmse_m = std::sqrt(eq.sse / static_cast<double>(eq.count));

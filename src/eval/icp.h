@@ -21,6 +21,10 @@ struct IcpConfig {
   double max_correspondence_m = 1.0;
   double convergence_m = 1e-6;  // stop when an update moves points by less than this
   std::size_t normal_neighbours = 10;
+  // Point-to-plane: a direction of the normal equations whose eigenvalue is below this times the number of
+  // correspondences is unconstrained (a tunnel's axis, where every normal is across it) and the update
+  // leaves the alignment unchanged along it, instead of sliding the map along the tunnel.
+  double min_eigenvalue_per_match = 1e-3;
 };
 
 struct IcpResult {
@@ -29,6 +33,7 @@ struct IcpResult {
   bool converged = false;
   std::size_t inliers = 0;  // correspondences used in the last iteration
   double rmse_m = 0;        // of those correspondences, before the last update
+  int degenerate_directions = 0;  // point-to-plane: unconstrained directions in the last iteration
 };
 
 // Unit normals of the model points from their k nearest neighbours (smallest-eigenvalue direction).

@@ -1,8 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <random>
 
+#include "eval/icp.h"
 #include "eval/map_error.h"
 #include "test_util.h"
 
@@ -186,7 +188,7 @@ TEST(MapError, PartMeasuredInTheWholeMapsAlignmentShowsADoubleSurface) {
   const PointCloud whole = moved(model, kOffset);
   PointCloud part;
   const SE3 shift(Quat::Identity(), Vec3(0.04, 0.04, 0.04));  // 4 cm off every plane of the cloud
-  for (std::size_t i = 0; i < whole.size(); i += 50)
+  for (std::size_t i = 0; i < whole.size(); i += 51)  // 51: points of all five planes (they alternate)
     part.points.push_back((shift * whole.points[i].cast<double>()).cast<float>());
   const MapError in_whole = compute_map_error(part, whole, model, MapErrorConfig{});
   const MapError alone = compute_map_error(part, model, MapErrorConfig{});
@@ -199,6 +201,32 @@ TEST(MapError, PartMeasuredInTheWholeMapsAlignmentShowsADoubleSurface) {
 }
 
 // A real LiDAR scan against itself after the known offset: ICP undoes it on real structure.
+// A tube along x (a tunnel without ends): no surface constrains x. ICP corrects
+// the offset across the tube and keeps the initial alignment along the unconstrained directions instead of
+// sliding the map along the tube.
+TEST(MapError, IcpKeepsTheInitialAlignmentAlongAnUnconstrainedTunnelAxis) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> along(0.0, 40.0), angle(0.0, 2 * M_PI);
+  std::vector<Eigen::Vector3f> tube;
+  for (int i = 0; i < 20000; ++i) {
+    const double a = angle(rng);
+    tube.emplace_back(static_cast<float>(along(rng)), static_cast<float>(3.0 * std::cos(a)), static_cast<float>(3.0 * std::sin(a)));
+  }
+  const PointIndex model(tube);
+  const std::vector<Eigen::Vector3f> normals = estimate_normals(model, 10);
+  std::vector<Eigen::Vector3f> map;
+  for (std::size_t i = 0; i < tube.size(); i += 7) map.push_back(tube[i]);
+  const SE3 initial(Quat::Identity(), Vec3(0.5, 0.06, -0.04));  // 0.5 m along the axis, 7 cm across it
+  const IcpResult r = align_icp(map, model, normals, IcpConfig{}, initial);
+  EXPECT_GE(r.degenerate_directions, 1);  // the axis (the roll about it is held by the normals' noise)
+  EXPECT_NEAR(r.T_model_map.translation().x(), 0.5, 0.02);  // kept: the map does not slide along the tube
+  EXPECT_LT(r.T_model_map.translation().tail<2>().norm(), 0.01);  // corrected across it
+  // Without the rule (threshold 0) the solve follows numerical noise along the axis.
+  IcpConfig unguarded;
+  unguarded.min_eigenvalue_per_match = 0;
+  EXPECT_EQ(align_icp(map, model, normals, unguarded, initial).degenerate_directions, 0);
+}
+
 TEST(MapError, RealScanAgainstItselfAfterKnownOffset) {
   VILSLAM_REQUIRE_SHARED_DATA(path, "lidar/small_gicp/target.ply");
   const PointCloud model = read_cloud(path);
