@@ -3,25 +3,20 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
 #include "common/error.h"
 #include "io/dataset_index.h"
 #include "io/kalibr_calibration.h"
+#include "io/yaml_util.h"
+#include "calibration_expect.h"
 #include "test_util.h"
 
 namespace vilslam {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
 
 // A list with the numbers as the file prints them.
 std::string list(const YAML::Node& seq) {
@@ -33,11 +28,7 @@ std::string list(const YAML::Node& seq) {
 // A 4x4 matrix as Kalibr writes it (nested rows).
 std::string matrix(const Mat4& M) {
   std::string out;
-  for (int r = 0; r < 4; ++r) {
-    out += "  - [";
-    for (int c = 0; c < 4; ++c) out += (c ? ", " : "") + number(M(r, c));
-    out += "]\n";
-  }
+  for (int r = 0; r < 4; ++r) out += "  - " + yaml_list({M(r, 0), M(r, 1), M(r, 2), M(r, 3)}) + "\n";
   return out;
 }
 
@@ -87,18 +78,6 @@ fs::path euroc_with_kalibr(const std::string& euroc, const std::string& camchain
   return dir;
 }
 
-void expect_same_camera(const CameraIntrinsics& a, const CameraIntrinsics& b) {
-  EXPECT_EQ(a.width_px, b.width_px);
-  EXPECT_EQ(a.height_px, b.height_px);
-  EXPECT_EQ(a.fx, b.fx);
-  EXPECT_EQ(a.fy, b.fy);
-  EXPECT_EQ(a.cx, b.cx);
-  EXPECT_EQ(a.cy, b.cy);
-  EXPECT_EQ(a.distortion, b.distortion);
-  EXPECT_EQ(a.distortion_coeffs, b.distortion_coeffs);
-  EXPECT_EQ(a.rate_hz, b.rate_hz);
-}
-
 void expect_same_transform(const SE3& a, const SE3& b) {
   EXPECT_LT((a.matrix() - b.matrix()).cwiseAbs().maxCoeff(), 1e-12) << a.matrix() << "\n" << b.matrix();
 }
@@ -119,7 +98,7 @@ TEST(KalibrEuroc, CalibrationOfTheRealRigLoadsToTheEurocReadersNumbers) {
     for (int i = 0; i < 2; ++i) {
       CameraIntrinsics cam = i ? c->cam1 : c->cam0;
       if (c == &kalibr) cam.rate_hz = i ? ref.cam1.rate_hz : ref.cam0.rate_hz;
-      expect_same_camera(cam, i ? ref.cam1 : ref.cam0);
+      test::expect_same_camera(cam, i ? ref.cam1 : ref.cam0);
     }
     expect_same_transform(c->T_I_C0, ref.T_I_C0);
     expect_same_transform(c->T_I_C1, ref.T_I_C1);
