@@ -24,7 +24,7 @@ DatasetIndex index_dataset(const std::string& root) {
     throw InputError(root, "unknown dataset layout (expected mav0/, rig.yaml, or KITTI calib.txt and times.txt)");
   }
   // A user's Kalibr calibration next to the data replaces the layout's (docs/formats.md).
-  apply_kalibr_folder(root, index.calibration);
+  if (apply_kalibr_folder(root, index.calibration)) index.summary.calibration = "kalibr";
   finalize_summary(index);
   return index;
 }

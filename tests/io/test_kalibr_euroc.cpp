@@ -113,7 +113,7 @@ TEST(KalibrEuroc, CalibrationOfTheRealRigLoadsToTheEurocReadersNumbers) {
 }
 
 // The Kalibr files beside the data are what the dataset uses: a changed focal length, time shift and a
-// LiDAR extrinsic show up in index_dataset; a bad file is an InputError naming it.
+// LiDAR extrinsic show up in index_dataset and `vilslam info`; a bad file is an InputError naming it (exit 2).
 TEST(KalibrEuroc, FilesBesideTheDataReplaceTheLayoutsCalibration) {
   VILSLAM_REQUIRE_SHARED_DATA(euroc, "euroc/V1_01_easy_micro");
   const std::string mav0 = euroc + "/mav0";
@@ -133,6 +133,10 @@ TEST(KalibrEuroc, FilesBesideTheDataReplaceTheLayoutsCalibration) {
   EXPECT_EQ(used.lidar.num_rings, 32);
   EXPECT_EQ(used.lidar.rate_hz, LidarIntrinsics{}.rate_hz);
 
+  const test::CliResult info = test::run_cli("info " + dir.string());
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_NE(info.output.find("calibration: kalibr"), std::string::npos) << info.output;
+
   std::ofstream(dir / kLidarImuFile) << "T_lidar_imu: [1, 0, 0]\n";
   try {
     index_dataset(dir.string());
@@ -140,6 +144,9 @@ TEST(KalibrEuroc, FilesBesideTheDataReplaceTheLayoutsCalibration) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), (dir / kLidarImuFile).string());
   }
+  const test::CliResult bad = test::run_cli("info " + dir.string());
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("error: " + (dir / kLidarImuFile).string()), std::string::npos) << bad.output;
 }
 
 }  // namespace
