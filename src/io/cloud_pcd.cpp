@@ -136,6 +136,9 @@ std::string decompress_fields(const std::string& path, const std::string& bytes,
 
 }  // namespace
 
+// Larger counts are not point fields (and would let a record size overflow).
+constexpr std::size_t kMaxCount = 65536;
+
 PointCloud decode_pcd(const std::string& path, const std::string& bytes) {
   const Header h = parse_header(path, bytes);
   const bool ascii = h.data == "ascii";
@@ -143,7 +146,10 @@ PointCloud decode_pcd(const std::string& path, const std::string& bytes) {
   std::vector<std::size_t> field_bytes;
   for (std::size_t f = 0; f < h.fields.size(); ++f) {
     const std::string& name = h.fields[f];
-    if (h.counts[f] == 0 || h.sizes[f] == 0) throw InputError(path, "bad header: field '" + name + "' has size or count 0");
+    if (h.sizes[f] == 0 || h.sizes[f] > 8 || h.counts[f] == 0 || h.counts[f] > kMaxCount) {
+      throw InputError(path, "bad header: field '" + name + "' has SIZE " + std::to_string(h.sizes[f]) + " COUNT " +
+                                 std::to_string(h.counts[f]) + " (SIZE 1 to 8, COUNT 1 to 65536)");
+    }
     // Types matter only for the fields we keep; the rest are skipped by their declared size.
     const Scalar type = field_slot(name) >= 0 ? pcd_scalar(path, h.types[f], h.sizes[f]) : Scalar::kU8;
     field_bytes.push_back(h.sizes[f] * h.counts[f]);

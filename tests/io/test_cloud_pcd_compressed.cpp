@@ -140,6 +140,10 @@ TEST(PcdCompressed, CorruptOrTruncatedPayloadIsAnInputError) {
   ref[payload + 8] = static_cast<char>(0x20);
   write_bytes(dir / "r.pcd", ref);
   EXPECT_NE(error_of(dir / "r.pcd").find("before the start of the output"), std::string::npos);
+  // A field too wide to be a point field.
+  write_bytes(dir / "wide.pcd", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 18446744073709551615\nPOINTS 1\n"
+                                "DATA binary_compressed\n");
+  EXPECT_NE(error_of(dir / "wide.pcd").find("bad header: field 'z' has SIZE 4 COUNT"), std::string::npos);
   // A ring that is not an integer in 0..65535 (a float field named ring).
   std::vector<Field> fields = {{"x", 'F', 4, 1, {}}, {"y", 'F', 4, 1, {}}, {"z", 'F', 4, 1, {}}, {"ring", 'F', 4, 1, {}}};
   for (Field& f : fields) append<float>(f.values, f.name == "ring" ? -1.0f : 0.0f);
