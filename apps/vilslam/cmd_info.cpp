@@ -36,7 +36,8 @@ std::vector<std::string> sensors(const DatasetIndex& index) {
 
 void print(const DatasetIndex& index, const std::vector<std::string>& sensor_names, double duration_s) {
   const DatasetSummary& s = index.summary;
-  std::printf("format: %s\npath: %s\nsensors:", s.format.c_str(), s.path.c_str());
+  std::printf("format: %s\npath: %s\ncalibration: %s\nsensors:", s.format.c_str(), s.path.c_str(),
+              s.calibration.c_str());
   for (const auto& name : sensor_names) std::printf(" [%s]", name.c_str());
   std::printf("\nstereo_frames: %zu\nimu_samples: %zu\nlidar_scans: %zu\ngroundtruth_poses: %zu\n", s.stereo_frames,
               s.imu_samples, s.lidar_scans, s.groundtruth_poses);
@@ -53,6 +54,7 @@ void write_json(const std::string& path, const DatasetIndex& index, const std::v
   json.begin_object();
   json.key("format").value(s.format);
   json.key("path").value(s.path);
+  json.key("calibration").value(s.calibration);
   json.key("sensors").begin_array();
   for (const auto& name : sensor_names) json.value(name);
   json.end_array();

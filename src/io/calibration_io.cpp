@@ -11,11 +11,6 @@ namespace {
 
 std::size_t coeff_count(DistortionModel model) { return model == DistortionModel::kNone ? 0 : 4; }
 
-YAML::Node section(const YAML::Node& root, const std::string& key, const std::string& file) {
-  if (!root.IsMap() || !root[key] || !root[key].IsMap()) throw InputError(file, "missing section '" + key + "'");
-  return root[key];
-}
-
 std::string transform_text(const SE3& T) {
   const std::vector<double> v = transform_entries(T);
   std::string out = "\n";
@@ -69,48 +64,18 @@ std::string distortion_model_name(DistortionModel model) {
   return "none";
 }
 
-RigCalibration read_kalibr_camchain(const std::string& path, const std::string& imu_path) {
-  const YAML::Node root = load_yaml_file(path);
-  RigCalibration calib;
-  CameraIntrinsics* cams[2] = {&calib.cam0, &calib.cam1};
-  SE3* T_I_C[2] = {&calib.T_I_C0, &calib.T_I_C1};
-  for (int i = 0; i < 2; ++i) {
-    const std::string name = "cam" + std::to_string(i);
-    const YAML::Node node = section(root, name, path);
-    *cams[i] = read_pinhole(node, path, "distortion_coeffs");
-    if (node["T_cam_imu"]) {
-      *T_I_C[i] = yaml_transform(node, "T_cam_imu", path).inverse();
-    } else if (i == 1 && node["T_cn_cnm1"]) {
-      // T_I_C1 = T_I_C0 T_C0_C1, with T_cn_cnm1 = T_C1_C0.
-      *T_I_C[i] = calib.T_I_C0 * yaml_transform(node, "T_cn_cnm1", path).inverse();
-    } else if (i == 1) {
-      throw InputError(path, "cam1 needs T_cam_imu or T_cn_cnm1");
-    }
-  }
-  if (!imu_path.empty()) {
-    const YAML::Node imu = load_yaml_file(imu_path);
-    calib.imu.accel_noise_density = yaml_double(imu, "accelerometer_noise_density", imu_path);
-    calib.imu.accel_random_walk = yaml_double(imu, "accelerometer_random_walk", imu_path);
-    calib.imu.gyro_noise_density = yaml_double(imu, "gyroscope_noise_density", imu_path);
-    calib.imu.gyro_random_walk = yaml_double(imu, "gyroscope_random_walk", imu_path);
-    calib.imu.rate_hz = yaml_double(imu, "update_rate", imu_path);
-  }
-  validate_calibration(calib, path);
-  return calib;
-}
-
 RigCalibration read_rig_yaml(const std::string& path) {
   const YAML::Node root = load_yaml_file(path);
   RigCalibration calib;
   CameraIntrinsics* cams[2] = {&calib.cam0, &calib.cam1};
   SE3* T_I_C[2] = {&calib.T_I_C0, &calib.T_I_C1};
   for (int i = 0; i < 2; ++i) {
-    const YAML::Node node = section(root, "cam" + std::to_string(i), path);
+    const YAML::Node node = yaml_section(root, "cam" + std::to_string(i), path);
     *cams[i] = read_pinhole(node, path, "distortion_coeffs");
     cams[i]->rate_hz = yaml_double(node, "rate_hz", path);
     *T_I_C[i] = yaml_transform(node, "T_I_C", path);
   }
-  const YAML::Node imu = section(root, "imu", path);
+  const YAML::Node imu = yaml_section(root, "imu", path);
   calib.imu.gyro_noise_density = yaml_double(imu, "gyro_noise_density", path);
   calib.imu.gyro_random_walk = yaml_double(imu, "gyro_random_walk", path);
   calib.imu.accel_noise_density = yaml_double(imu, "accel_noise_density", path);
@@ -118,7 +83,7 @@ RigCalibration read_rig_yaml(const std::string& path) {
   calib.imu.rate_hz = yaml_double(imu, "rate_hz", path);
   calib.has_lidar = root["lidar"].IsDefined();
   if (calib.has_lidar) {
-    const YAML::Node lidar = section(root, "lidar", path);
+    const YAML::Node lidar = yaml_section(root, "lidar", path);
     calib.T_I_L = yaml_transform(lidar, "T_I_L", path);
     calib.lidar.num_rings = yaml_int(lidar, "num_rings", path);
     calib.lidar.rate_hz = yaml_double(lidar, "rate_hz", path);

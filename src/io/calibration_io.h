@@ -1,5 +1,6 @@
 #pragma once
-// Calibration files: Kalibr camchain (and imu) YAML in, the project's rig YAML (docs/formats.md) in and out.
+// Calibration files: the project's rig YAML (docs/formats.md) in and out, and the pinhole fields every
+// camera calibration file shares (Kalibr: io/kalibr_calibration.h).
 #include <yaml-cpp/yaml.h>
 
 #include <string>
@@ -17,11 +18,6 @@ std::string distortion_model_name(DistortionModel model);
 // distortion_model and the coefficient list named coeffs_key (EuRoC: distortion_coefficients).
 // camera_model must be pinhole. rate_hz is left 0.
 CameraIntrinsics read_pinhole(const YAML::Node& node, const std::string& file, const std::string& coeffs_key);
-
-// Kalibr camchain(-imucam) YAML: cam0 and cam1 (pinhole, radtan|equidistant). T_I_C comes from
-// T_cam_imu when present; otherwise cam0 is taken as I and cam1 placed by T_cn_cnm1.
-// imu_path (optional): a Kalibr imu.yaml with the noise densities, random walks and update_rate.
-RigCalibration read_kalibr_camchain(const std::string& path, const std::string& imu_path = {});
 
 // The project's rig YAML (all RigCalibration fields).
 RigCalibration read_rig_yaml(const std::string& path);

@@ -18,12 +18,22 @@ double load_scalar(const char* p, Scalar type);
 // Splits a header line into whitespace-separated tokens.
 std::vector<std::string> split_words(const std::string& line);
 
-// Where x, y, z and intensity sit inside one record (byte offsets for binary, token indices for ASCII).
+// The per-point fields a cloud file can fill, in PointCloud's order.
+enum Slot : int { kX, kY, kZ, kIntensity, kRing, kTime, kNumSlots };
+
+// The slot a field named `name` fills, or -1: x, y, z; intensity (also PLY's scalar_intensity); ring;
+// timestamp or time (seconds, PCL / Velodyne drivers).
+int field_slot(const std::string& name);
+
+// Where the fields sit inside one record (byte offsets for binary, token indices for ASCII).
 struct RecordLayout {
   std::size_t stride = 0;  // bytes (binary) or tokens (ASCII) per record
-  std::size_t offset[4] = {0, 0, 0, 0};
-  Scalar type[4] = {Scalar::kF32, Scalar::kF32, Scalar::kF32, Scalar::kF32};
-  bool has_intensity = false;
+  std::size_t offset[kNumSlots] = {};
+  Scalar type[kNumSlots] = {Scalar::kF32, Scalar::kF32, Scalar::kF32, Scalar::kF32, Scalar::kF32, Scalar::kF32};
+  bool has[kNumSlots] = {};
+  // Appends a field `width` bytes (binary) or tokens (ASCII) wide; the first field of each slot's name fills
+  // the slot (with COUNT > 1, its first element).
+  void add_field(const std::string& name, Scalar type, std::size_t width);
 };
 
 // Decodes `count` packed little-endian records starting at bytes[begin]; throws when the payload is short.

@@ -15,135 +15,6 @@
 
 namespace vilslam {
 
-namespace cloud_detail {
-
-std::size_t scalar_size(Scalar type) {
-  switch (type) {
-    case Scalar::kI8:
-    case Scalar::kU8:
-      return 1;
-    case Scalar::kI16:
-    case Scalar::kU16:
-      return 2;
-    case Scalar::kI32:
-    case Scalar::kU32:
-    case Scalar::kF32:
-      return 4;
-    case Scalar::kF64:
-      return 8;
-  }
-  return 0;
-}
-
-namespace {
-
-template <typename T>
-double load_as(const char* p) {
-  T v;
-  std::memcpy(&v, p, sizeof(T));
-  return static_cast<double>(v);
-}
-
-}  // namespace
-
-double load_scalar(const char* p, Scalar type) {
-  switch (type) {
-    case Scalar::kI8:
-      return load_as<std::int8_t>(p);
-    case Scalar::kU8:
-      return load_as<std::uint8_t>(p);
-    case Scalar::kI16:
-      return load_as<std::int16_t>(p);
-    case Scalar::kU16:
-      return load_as<std::uint16_t>(p);
-    case Scalar::kI32:
-      return load_as<std::int32_t>(p);
-    case Scalar::kU32:
-      return load_as<std::uint32_t>(p);
-    case Scalar::kF32:
-      return load_as<float>(p);
-    case Scalar::kF64:
-      return load_as<double>(p);
-  }
-  return 0.0;
-}
-
-std::vector<std::string> split_words(const std::string& line) {
-  std::istringstream in(line);
-  std::vector<std::string> words;
-  for (std::string w; in >> w;) words.push_back(w);
-  return words;
-}
-
-PointCloud decode_binary(const std::string& path, const std::string& bytes, std::size_t begin, std::size_t count,
-                         const RecordLayout& layout) {
-  if (begin > bytes.size() || (bytes.size() - begin) / layout.stride < count) {
-    throw InputError(path, "truncated payload: header declares " + std::to_string(count) + " points of " +
-                               std::to_string(layout.stride) + " bytes, file has " +
-                               std::to_string(bytes.size() - std::min(begin, bytes.size())) + " bytes of data");
-  }
-  PointCloud cloud;
-  cloud.points.resize(count);
-  if (layout.has_intensity) cloud.intensity.resize(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    const char* record = bytes.data() + begin + i * layout.stride;
-    for (int k = 0; k < 3; ++k) {
-      cloud.points[i][k] = static_cast<float>(load_scalar(record + layout.offset[k], layout.type[k]));
-    }
-    if (layout.has_intensity) {
-      cloud.intensity[i] = static_cast<float>(load_scalar(record + layout.offset[3], layout.type[3]));
-    }
-  }
-  return cloud;
-}
-
-PointCloud decode_ascii(const std::string& path, const std::string& bytes, std::size_t begin, std::size_t count,
-                        const RecordLayout& layout, long first_line) {
-  PointCloud cloud;
-  cloud.points.resize(count);
-  if (layout.has_intensity) cloud.intensity.resize(count);
-  std::size_t pos = begin;
-  std::vector<double> values(layout.stride);
-  for (std::size_t i = 0; i < count; ++i) {
-    const long line_no = first_line + static_cast<long>(i);
-    if (pos >= bytes.size()) {
-      throw InputError(path, "truncated payload: expected " + std::to_string(count) + " points, found " +
-                                 std::to_string(i), line_no);
-    }
-    std::size_t end = bytes.find('\n', pos);
-    if (end == std::string::npos) end = bytes.size();
-    const std::vector<std::string> words = split_words(bytes.substr(pos, end - pos));
-    pos = end + 1;
-    if (words.size() < layout.stride) {
-      throw InputError(path, "expected " + std::to_string(layout.stride) + " values, found " +
-                                 std::to_string(words.size()), line_no);
-    }
-    const auto value = [&](std::size_t token) {
-      char* stop = nullptr;
-      const double v = std::strtod(words[token].c_str(), &stop);
-      if (stop == words[token].c_str() || *stop != '\0') {
-        throw InputError(path, "not a number: '" + words[token] + "'", line_no);
-      }
-      return v;
-    };
-    for (int k = 0; k < 3; ++k) cloud.points[i][k] = static_cast<float>(value(layout.offset[k]));
-    if (layout.has_intensity) cloud.intensity[i] = static_cast<float>(value(layout.offset[3]));
-  }
-  return cloud;
-}
-
-std::string pack_xyzi(const PointCloud& cloud) {
-  std::string out(cloud.size() * 4 * sizeof(float), '\0');
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const float record[4] = {cloud.points[i].x(), cloud.points[i].y(), cloud.points[i].z(),
-                             cloud.intensity.empty() ? 0.0f : cloud.intensity[i]};
-    std::memcpy(out.data() + i * sizeof record, record, sizeof record);
-  }
-  return out;
-}
-
-}  // namespace cloud_detail
-
 namespace {
 
 std::string extension_of(const std::string& path) {
@@ -169,9 +40,7 @@ PointCloud decode_kitti_bin(const std::string& path, const std::string& bytes) {
                                " bytes is not a multiple of 16 (x y z reflectance float32)");
   }
   cloud_detail::RecordLayout layout;
-  layout.stride = kStride;
-  for (std::size_t k = 0; k < 4; ++k) layout.offset[k] = k * sizeof(float);
-  layout.has_intensity = true;
+  for (const char* name : {"x", "y", "z", "intensity"}) layout.add_field(name, cloud_detail::Scalar::kF32, sizeof(float));
   return cloud_detail::decode_binary(path, bytes, 0, bytes.size() / kStride, layout);
 }
 

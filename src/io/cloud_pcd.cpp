@@ -1,7 +1,13 @@
-// PCD codec: reads DATA binary and ascii (FIELDS/SIZE/TYPE/COUNT; x y z, optional intensity, other fields
-// skipped), rejects binary_compressed with a clear message, writes DATA binary x y z intensity.
+// PCD codec: reads DATA ascii, binary and binary_compressed (FIELDS/SIZE/TYPE/COUNT in any order; x y z,
+// optional intensity, ring, timestamp/time; other fields, padding `_` included, skipped), writes DATA
+// binary x y z intensity.
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
 #include "common/error.h"
 #include "io/cloud_formats.h"
+#include "io/lzf.h"
 
 namespace vilslam::cloud_detail {
 
@@ -70,10 +76,9 @@ Header parse_header(const std::string& path, const std::string& bytes) {
       h.counts.size() != h.fields.size()) {
     throw InputError(path, "bad header: FIELDS, SIZE, TYPE and COUNT must list the same number of entries");
   }
-  if (h.data == "binary_compressed") {
-    throw InputError(path, "DATA binary_compressed is unsupported (re-save the cloud as binary or ascii PCD)");
+  if (h.data != "binary" && h.data != "ascii" && h.data != "binary_compressed") {
+    throw InputError(path, "bad header: unknown DATA '" + h.data + "'");
   }
-  if (h.data != "binary" && h.data != "ascii") throw InputError(path, "bad header: unknown DATA '" + h.data + "'");
   h.payload_begin = pos;
   return h;
 }
@@ -90,27 +95,71 @@ Scalar pcd_scalar(const std::string& path, char type, std::size_t size) {
   throw InputError(path, std::string("bad header: unsupported field type ") + type + std::to_string(size));
 }
 
+// PCL's binary_compressed payload: uint32 compressed size, uint32 uncompressed size, then LZF data that
+// holds the fields one after another (every point's first field, then every point's second field, ...).
+// Returns the points as packed records, the layout of DATA binary.
+std::string decompress_fields(const std::string& path, const std::string& bytes, std::size_t begin, std::size_t points,
+                              const std::vector<std::size_t>& field_bytes) {
+  constexpr std::size_t kSizesBytes = 2 * sizeof(std::uint32_t);
+  const std::size_t available = bytes.size() - std::min(begin, bytes.size());
+  if (available < kSizesBytes) throw InputError(path, "truncated binary_compressed payload: no size header");
+  std::uint32_t sizes[2];
+  std::memcpy(sizes, bytes.data() + begin, kSizesBytes);
+  const std::size_t compressed = sizes[0], uncompressed = sizes[1];
+  if (compressed > available - kSizesBytes) {
+    throw InputError(path, "truncated binary_compressed payload: " + std::to_string(compressed) +
+                               " compressed bytes declared, " + std::to_string(available - kSizesBytes) + " present");
+  }
+  std::size_t stride = 0;
+  for (std::size_t b : field_bytes) stride += b;
+  if (points > std::numeric_limits<std::uint32_t>::max() / stride || uncompressed != points * stride) {
+    throw InputError(path, "binary_compressed payload: uncompressed size " + std::to_string(uncompressed) +
+                               " bytes does not match " + std::to_string(points) + " points of " +
+                               std::to_string(stride) + " bytes");
+  }
+  std::string by_field;
+  try {
+    by_field = lzf_decompress(bytes.data() + begin + kSizesBytes, compressed, uncompressed);
+  } catch (const LzfError& e) {
+    throw InputError(path, std::string("binary_compressed payload: ") + e.what());
+  }
+  std::string records(uncompressed, '\0');
+  std::size_t from = 0, field_offset = 0;
+  for (std::size_t width : field_bytes) {
+    for (std::size_t i = 0; i < points; ++i, from += width) {
+      std::memcpy(records.data() + i * stride + field_offset, by_field.data() + from, width);
+    }
+    field_offset += width;
+  }
+  return records;
+}
+
 }  // namespace
+
+// Larger counts are not point fields (and would let a record size overflow).
+constexpr std::size_t kMaxCount = 65536;
 
 PointCloud decode_pcd(const std::string& path, const std::string& bytes) {
   const Header h = parse_header(path, bytes);
   const bool ascii = h.data == "ascii";
   RecordLayout layout;
-  bool found[4] = {false, false, false, false};
+  std::vector<std::size_t> field_bytes;
   for (std::size_t f = 0; f < h.fields.size(); ++f) {
     const std::string& name = h.fields[f];
-    const int slot = name == "x" ? 0 : name == "y" ? 1 : name == "z" ? 2 : name == "intensity" ? 3 : -1;
-    if (slot >= 0 && !found[slot]) {
-      found[slot] = true;
-      layout.offset[slot] = layout.stride;
-      layout.type[slot] = pcd_scalar(path, h.types[f], h.sizes[f]);
+    if (h.sizes[f] == 0 || h.sizes[f] > 8 || h.counts[f] == 0 || h.counts[f] > kMaxCount) {
+      throw InputError(path, "bad header: field '" + name + "' has SIZE " + std::to_string(h.sizes[f]) + " COUNT " +
+                                 std::to_string(h.counts[f]) + " (SIZE 1 to 8, COUNT 1 to 65536)");
     }
-    layout.stride += ascii ? h.counts[f] : h.sizes[f] * h.counts[f];
+    // Types matter only for the fields we keep; the rest are skipped by their declared size.
+    const Scalar type = field_slot(name) >= 0 ? pcd_scalar(path, h.types[f], h.sizes[f]) : Scalar::kU8;
+    field_bytes.push_back(h.sizes[f] * h.counts[f]);
+    layout.add_field(name, type, ascii ? h.counts[f] : field_bytes.back());
   }
-  if (!found[0] || !found[1] || !found[2]) throw InputError(path, "bad header: FIELDS lacks x, y or z");
-  layout.has_intensity = found[3];
-  return ascii ? decode_ascii(path, bytes, h.payload_begin, h.points, layout, h.lines + 1)
-               : decode_binary(path, bytes, h.payload_begin, h.points, layout);
+  if (!layout.has[kX] || !layout.has[kY] || !layout.has[kZ]) throw InputError(path, "bad header: FIELDS lacks x, y or z");
+  if (ascii) return decode_ascii(path, bytes, h.payload_begin, h.points, layout, h.lines + 1);
+  if (h.data == "binary") return decode_binary(path, bytes, h.payload_begin, h.points, layout);
+  if (h.points == 0) return {};
+  return decode_binary(path, decompress_fields(path, bytes, h.payload_begin, h.points, field_bytes), 0, h.points, layout);
 }
 
 std::string encode_pcd(const PointCloud& cloud) {

@@ -1,4 +1,4 @@
-// PLY codec: reads binary_little_endian and ascii (vertex x y z, optional intensity; other properties and
+// PLY codec: reads binary_little_endian and ascii (vertex x y z, optional intensity, ring, time; other properties and
 // elements skipped by their declared types), writes binary_little_endian x y z intensity.
 #include <map>
 #include <optional>
@@ -96,10 +96,6 @@ Header parse_header(const std::string& path, const std::string& bytes) {
   return header;
 }
 
-bool is_intensity_name(const std::string& name) {
-  return name == "intensity" || name == "scalar_intensity" || name == "scalar_Intensity";
-}
-
 // Byte length of one binary record of an element that precedes the vertices (list lengths read in place).
 std::size_t binary_record_size(const std::string& path, const std::string& bytes, std::size_t at, const Element& e) {
   std::size_t size = 0;
@@ -136,19 +132,13 @@ PointCloud decode_ply(const std::string& path, const std::string& bytes) {
       continue;
     }
     RecordLayout layout;
-    bool found[4] = {false, false, false, false};
     for (const Property& p : e.properties) {
       if (p.is_list) throw InputError(path, "bad header: list property '" + p.name + "' in vertex element");
-      const int slot = p.name == "x" ? 0 : p.name == "y" ? 1 : p.name == "z" ? 2 : is_intensity_name(p.name) ? 3 : -1;
-      if (slot >= 0 && !found[slot]) {
-        found[slot] = true;
-        layout.offset[slot] = layout.stride;
-        layout.type[slot] = p.type;
-      }
-      layout.stride += header.ascii ? 1 : scalar_size(p.type);
+      layout.add_field(p.name, p.type, header.ascii ? 1 : scalar_size(p.type));
     }
-    if (!found[0] || !found[1] || !found[2]) throw InputError(path, "bad header: vertex element lacks x, y or z");
-    layout.has_intensity = found[3];
+    if (!layout.has[kX] || !layout.has[kY] || !layout.has[kZ]) {
+      throw InputError(path, "bad header: vertex element lacks x, y or z");
+    }
     return header.ascii ? decode_ascii(path, bytes, begin, e.count, layout, line)
                         : decode_binary(path, bytes, begin, e.count, layout);
   }

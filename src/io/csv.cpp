@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "common/error.h"
+#include "common/log.h"
 
 namespace vilslam {
 namespace {
@@ -139,11 +140,27 @@ TimeNs Table::seconds_as_ns(const TableRow& row, std::size_t col) const {
 
 void Table::require_increasing(const std::vector<TimeNs>& times) const {
   for (std::size_t i = 1; i < times.size(); ++i) {
-    if (times[i] <= times[i - 1]) {
-      throw InputError(path_, "timestamp " + std::to_string(times[i]) + " is not after the previous one (" +
-                                  std::to_string(times[i - 1]) + ")", rows_[i].line);
-    }
+    if (times[i] <= times[i - 1]) throw_not_after(times, i, i - 1);
   }
+}
+
+std::vector<std::size_t> Table::rows_without_repeated_times(const std::vector<TimeNs>& times) const {
+  std::vector<std::size_t> keep;
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    if (!keep.empty() && times[i] == times[keep.back()]) {
+      spdlog::warn("{}:{}: timestamp {} repeats line {}; row dropped", path_, rows_[i].line, times[i],
+                   rows_[keep.back()].line);
+      continue;
+    }
+    if (!keep.empty() && times[i] < times[keep.back()]) throw_not_after(times, i, keep.back());
+    keep.push_back(i);
+  }
+  return keep;
+}
+
+void Table::throw_not_after(const std::vector<TimeNs>& times, std::size_t i, std::size_t previous) const {
+  throw InputError(path_, "timestamp " + std::to_string(times[i]) + " is not after the previous one (" +
+                              std::to_string(times[previous]) + ")", rows_[i].line);
 }
 
 }  // namespace vilslam

@@ -33,9 +33,15 @@ class Table {
 
   // Throws unless times (one per row, in row order) increase strictly.
   void require_increasing(const std::vector<TimeNs>& times) const;
+  // For files from benchmarks that repeat a stamp now and then (TUM RGB-D ground truth, evo's V102.txt):
+  // the indices of the rows to keep. A time equal to the previous kept one drops its row with a warning
+  // naming file and line (the first pose at a time is kept, the one evo's association picks); a
+  // decreasing time is an InputError as in require_increasing.
+  std::vector<std::size_t> rows_without_repeated_times(const std::vector<TimeNs>& times) const;
 
  private:
   // The whole field as a T (std::from_chars), else InputError "field N is not <what>".
+  [[noreturn]] void throw_not_after(const std::vector<TimeNs>& times, std::size_t i, std::size_t previous) const;
   template <typename T>
   T parse(const TableRow& row, std::size_t col, const char* what) const;
 

@@ -32,6 +32,7 @@ struct DatasetSummary {
   double imu_rate_hz = 0;
   double lidar_rate_hz = 0;
   std::vector<std::string> problems;  // skipped rows, gaps larger than 1.5 periods, missing files
+  std::string calibration = "layout";  // "layout", or "kalibr" when Kalibr files beside the data replaced it
 };
 
 class DatasetReader {

@@ -1,8 +1,10 @@
-// Layout detection: the project's format (rig.yaml or mav0/lidar0), EuRoC ASL (mav0/), KITTI odometry.
+// Layout detection: the project's format (rig.yaml or mav0/lidar0), EuRoC ASL (mav0/), KITTI odometry;
+// then Kalibr calibration files in the folder, when there are any.
 #include <filesystem>
 
 #include "common/error.h"
 #include "io/dataset_index.h"
+#include "io/kalibr_calibration.h"
 
 namespace vilslam {
 
@@ -21,6 +23,8 @@ DatasetIndex index_dataset(const std::string& root) {
   } else {
     throw InputError(root, "unknown dataset layout (expected mav0/, rig.yaml, or KITTI calib.txt and times.txt)");
   }
+  // A user's Kalibr calibration next to the data replaces the layout's (docs/formats.md).
+  if (apply_kalibr_folder(root, index.calibration)) index.summary.calibration = "kalibr";
   finalize_summary(index);
   return index;
 }

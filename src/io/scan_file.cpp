@@ -1,5 +1,6 @@
 #include "io/scan_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -112,8 +113,13 @@ LidarScan read_kitti_scan(const std::string& path) { return scan_from_cloud(read
 
 LidarScan scan_from_cloud(const PointCloud& cloud, TimeNs t_ns) {
   LidarScan scan;
+  scan.has_ring = !cloud.ring.empty();
+  double t0_s = 0.0;  // the earliest point time, the scan's start
+  if (!cloud.time_s.empty()) {
+    t0_s = *std::min_element(cloud.time_s.begin(), cloud.time_s.end());
+    if (t_ns == 0) t_ns = static_cast<TimeNs>(std::llround(t0_s * 1e9));
+  }
   scan.t_ns = t_ns;
-  scan.has_ring = false;
   scan.points.resize(cloud.size());
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     LidarPoint& q = scan.points[i];
@@ -121,6 +127,8 @@ LidarScan scan_from_cloud(const PointCloud& cloud, TimeNs t_ns) {
     q.y = cloud.points[i].y();
     q.z = cloud.points[i].z();
     q.intensity = cloud.intensity.empty() ? 0.0f : cloud.intensity[i];
+    if (scan.has_ring) q.ring = cloud.ring[i];
+    if (!cloud.time_s.empty()) q.t_offset_s = static_cast<float>(cloud.time_s[i] - t0_s);
   }
   return scan;
 }

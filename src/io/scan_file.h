@@ -23,10 +23,12 @@ void write_scan_file(const std::string& path, const LidarScan& scan);
 // Cheap check: magic and header against the file size; returns num_points.
 std::size_t check_scan_file(const std::string& path);
 
-// Through read_cloud (cloud_io.h): has_ring = false, t_offset_s = 0.
+// Through read_cloud (cloud_io.h) and scan_from_cloud: a KITTI .bin has no ring and no per-point time.
 LidarScan read_kitti_scan(const std::string& path);
 
-// A cloud as a sweep without ring or per-point time (every point at t_ns).
+// A cloud as a sweep. The cloud's ring field, when present, gives each point's ring (has_ring = true;
+// otherwise has_ring = false). Its per-point times, when present, give t_offset_s relative to the earliest
+// point, which starts the sweep (t_ns, when 0, becomes that point's time); without them every point is at t_ns.
 LidarScan scan_from_cloud(const PointCloud& cloud, TimeNs t_ns = 0);
 // Cheap check: the size is a multiple of 16 bytes; returns the number of points.
 std::size_t check_kitti_scan(const std::string& path);

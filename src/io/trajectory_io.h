@@ -14,7 +14,8 @@ TrajectoryFormat parse_trajectory_format(const std::string& name);
 // Guess from the extension and the first data row.
 TrajectoryFormat detect_trajectory_format(const std::string& path);
 
-// Throws InputError naming file and line on missing files, bad rows, NaNs, unsorted timestamps.
+// Throws InputError naming file and line on missing files, bad rows, NaNs, decreasing timestamps. A TUM or
+// EuRoC row repeating the previous time is dropped with a warning naming file and line (benchmark files do it).
 // For KITTI files without times, pose i gets t_ns = i seconds unless times_path is given.
 Trajectory read_trajectory(const std::string& path, TrajectoryFormat format, const std::string& times_path = {});
 void write_trajectory(const std::string& path, const Trajectory& traj, TrajectoryFormat format);

@@ -41,6 +41,13 @@ std::vector<TimeNs> times_of(const Trajectory& traj) {
   return times;
 }
 
+// The poses of rows with a new time (Table::rows_without_repeated_times): benchmark files repeat a stamp.
+Trajectory without_repeated_times(const Table& table, const Trajectory& traj) {
+  Trajectory kept;
+  for (std::size_t i : table.rows_without_repeated_times(times_of(traj))) kept.push_back(traj[i]);
+  return kept;
+}
+
 Trajectory read_tum(const std::string& path) {
   const Table table(path, ' ', 8);
   Trajectory traj;
@@ -48,8 +55,7 @@ Trajectory read_tum(const std::string& path) {
     require_columns(table, row, "8 (t x y z qx qy qz qw)", row.fields.size() == 8);
     traj.push_back({table.seconds_as_ns(row, 0), pose_from_columns(table, row, 1, 7, 4)});
   }
-  table.require_increasing(times_of(traj));
-  return traj;
+  return without_repeated_times(table, traj);
 }
 
 Trajectory read_euroc(const std::string& path) {
@@ -61,8 +67,7 @@ Trajectory read_euroc(const std::string& path) {
     for (std::size_t col = 8; col < n; ++col) table.number(row, col);  // extra state columns must be numbers too
     traj.push_back({table.time_ns(row, 0), pose_from_columns(table, row, 1, 4, 5)});
   }
-  table.require_increasing(times_of(traj));
-  return traj;
+  return without_repeated_times(table, traj);
 }
 
 std::vector<TimeNs> read_times(const std::string& path) {

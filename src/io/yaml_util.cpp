@@ -41,6 +41,11 @@ std::vector<double> flatten_matrix(const YAML::Node& m, const std::string& key, 
 
 }  // namespace
 
+YAML::Node yaml_section(const YAML::Node& root, const std::string& key, const std::string& file) {
+  if (!root.IsMap() || !root[key] || !root[key].IsMap()) throw InputError(file, "missing section '" + key + "'");
+  return root[key];
+}
+
 double yaml_double(const YAML::Node& node, const std::string& key, const std::string& file) {
   double v = 0;
   try {

@@ -16,6 +16,8 @@ namespace vilslam {
 // any edited entry.
 constexpr double kRotationTolerance = 1e-5;
 
+// root[key] must be a map; otherwise InputError(file, "missing section '<key>'").
+YAML::Node yaml_section(const YAML::Node& root, const std::string& key, const std::string& file);
 // node[key] must exist and convert; otherwise InputError(file, "<key>: ...").
 double yaml_double(const YAML::Node& node, const std::string& key, const std::string& file);
 int yaml_int(const YAML::Node& node, const std::string& key, const std::string& file);

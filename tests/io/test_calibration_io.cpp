@@ -4,6 +4,7 @@
 
 #include "common/error.h"
 #include "io/calibration_io.h"
+#include "io/kalibr_calibration.h"
 #include "io/dataset.h"
 #include "synthetic_dataset.h"
 #include "test_util.h"

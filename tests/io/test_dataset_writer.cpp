@@ -5,6 +5,7 @@
 #include "io/cloud_io.h"
 #include "io/dataset.h"
 #include "synthetic_dataset.h"
+#include "calibration_expect.h"
 #include "test_util.h"
 
 namespace vilslam {
@@ -14,18 +15,6 @@ namespace fs = std::filesystem;
 
 void expect_same_pose(const SE3& a, const SE3& b) {
   EXPECT_LT((a.matrix() - b.matrix()).cwiseAbs().maxCoeff(), 1e-14);
-}
-
-void expect_same_camera(const CameraIntrinsics& a, const CameraIntrinsics& b) {
-  EXPECT_EQ(a.width_px, b.width_px);
-  EXPECT_EQ(a.height_px, b.height_px);
-  EXPECT_EQ(a.fx, b.fx);
-  EXPECT_EQ(a.fy, b.fy);
-  EXPECT_EQ(a.cx, b.cx);
-  EXPECT_EQ(a.cy, b.cy);
-  EXPECT_EQ(a.distortion, b.distortion);
-  EXPECT_EQ(a.distortion_coeffs, b.distortion_coeffs);
-  EXPECT_EQ(a.rate_hz, b.rate_hz);
 }
 
 TEST(DatasetWriter, RoundTripIsExact) {
@@ -45,8 +34,8 @@ TEST(DatasetWriter, RoundTripIsExact) {
   EXPECT_NEAR(reader->summary().lidar_rate_hz, 10.0, 1e-9);
 
   const RigCalibration& c = reader->calibration();
-  expect_same_camera(c.cam0, d.calib.cam0);
-  expect_same_camera(c.cam1, d.calib.cam1);
+  test::expect_same_camera(c.cam0, d.calib.cam0);
+  test::expect_same_camera(c.cam1, d.calib.cam1);
   expect_same_pose(c.T_I_C0, d.calib.T_I_C0);
   expect_same_pose(c.T_I_C1, d.calib.T_I_C1);
   expect_same_pose(c.T_I_L, d.calib.T_I_L);
@@ -139,7 +128,7 @@ TEST(DatasetWriter, WithoutRigYamlTheSensorYamlsCarryTheCalibration) {
   const auto reader = open_dataset(root);  // still the project's format: mav0/lidar0 exists
   EXPECT_EQ(reader->summary().format, "vilslam");
   const RigCalibration& c = reader->calibration();
-  expect_same_camera(c.cam1, d.calib.cam1);
+  test::expect_same_camera(c.cam1, d.calib.cam1);
   expect_same_pose(c.T_I_C1, d.calib.T_I_C1);
   expect_same_pose(c.T_I_L, d.calib.T_I_L);
   EXPECT_EQ(c.lidar.max_range_m, 80.0);

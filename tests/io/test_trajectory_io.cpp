@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -120,7 +121,6 @@ TEST(TrajectoryIo, BadInputsNameFileAndLine) {
       {"nan", ok + "2.0 0 0 nan 0 0 0 1\n", 3},
       {"inf", ok + "2.0 0 0 0 0 0 0 inf\n", 3},
       {"bad time", ok + "2.0.1 0 0 0 0 0 0 1\n", 3},
-      {"duplicate time", ok + "1.0 0 0 0 0 0 0 1\n", 3},
       {"decreasing time", ok + "0.5 0 0 0 0 0 0 1\n", 3},
       {"non-unit quaternion", ok + "2.0 0 0 0 0 0 0 1.1\n", 3},
   };
@@ -174,12 +174,41 @@ TEST(TrajectoryIo, ReadsSharedEurocAndTumFiles) {
   EXPECT_EQ(read_trajectory(dir + "/fr2_desk_ORB.txt", TrajectoryFormat::kTum).size(), 2893u);
 }
 
-// Two of the shared estimates repeat a timestamp with a different pose; the reader rejects them
-// (timestamps must be strictly increasing) and names the offending line.
-TEST(TrajectoryIo, SharedFilesWithRepeatedTimestampsAreRejected) {
+// A row repeating the previous time is dropped (the first pose at that time stays); a time that goes
+// back is still an error naming its line, also after a repeat.
+TEST(TrajectoryIo, RepeatedTimeDropsTheRowDecreasingTimeIsAnError) {
+  const fs::path dir = test::temp_dir();
+  write_text(dir / "r.txt", "1.0 1 0 0 0 0 0 1\n2.0 2 0 0 0 0 0 1\n2.0 9 0 0 0 0 0 1\n3.0 3 0 0 0 0 0 1\n");
+  const Trajectory traj = read_trajectory((dir / "r.txt").string(), TrajectoryFormat::kTum);
+  ASSERT_EQ(traj.size(), 3u);
+  EXPECT_EQ(traj[1].t_ns, 2 * kNsPerSecond);
+  EXPECT_EQ(traj[1].T_W_B.translation().x(), 2.0);
+  EXPECT_EQ(traj[2].T_W_B.translation().x(), 3.0);
+  write_text(dir / "e.csv", "100,1,2,3,1,0,0,0\n100,4,5,6,1,0,0,0\n");
+  ASSERT_EQ(read_trajectory((dir / "e.csv").string(), TrajectoryFormat::kEuroc).size(), 1u);
+  write_text(dir / "d.txt", "1.0 1 0 0 0 0 0 1\n2.0 2 0 0 0 0 0 1\n2.0 9 0 0 0 0 0 1\n1.5 3 0 0 0 0 0 1\n");
+  expect_input_error(dir / "d.txt", TrajectoryFormat::kTum, 4, "decreasing after a repeat");
+}
+
+// Two of the shared files repeat timestamps with a different pose (V102.txt lines 433, 684, 736, 788;
+// fr2_desk ground truth line 10863); each loses exactly those rows, keeping the first pose at each time.
+TEST(TrajectoryIo, SharedFilesWithRepeatedTimestampsLoseTheRepeatedRow) {
   VILSLAM_REQUIRE_SHARED_DATA(dir, "trajectories");
-  expect_input_error(dir + "/V102.txt", TrajectoryFormat::kTum, 433, "V102.txt repeated time");
-  expect_input_error(dir + "/fr2_desk_groundtruth.txt", TrajectoryFormat::kTum, 10863, "fr2_desk repeated time");
+  const struct {
+    const char* name;
+    std::size_t rows;
+    TimeNs repeated_ns;
+    double first_x;  // the pose of the first row at the repeated time, the one kept
+  } files[] = {{"V102.txt", 807 - 4, 1403715572'212143183, 1.16564},
+               {"fr2_desk_groundtruth.txt", 20957 - 1, 1311868229'576000000, 1.4054}};
+  for (const auto& f : files) {
+    const Trajectory traj = read_trajectory(dir + "/" + f.name, TrajectoryFormat::kTum);
+    for (std::size_t i = 1; i < traj.size(); ++i) ASSERT_GT(traj[i].t_ns, traj[i - 1].t_ns) << f.name << " " << i;
+    EXPECT_EQ(traj.size(), f.rows) << f.name;
+    const auto at = std::find_if(traj.begin(), traj.end(), [&](const TimedPose& p) { return p.t_ns == f.repeated_ns; });
+    ASSERT_NE(at, traj.end());
+    EXPECT_EQ(at->T_W_B.translation().x(), f.first_x) << f.name;
+  }
 }
 
 }  // namespace
