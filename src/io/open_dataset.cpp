@@ -1,4 +1,5 @@
-// Layout detection: the project's format (rig.yaml or mav0/lidar0), EuRoC ASL (mav0/), KITTI odometry.
+// Layout detection: a ROS1 bag (a .bag file), the project's format (rig.yaml or mav0/lidar0), EuRoC ASL
+// (mav0/), KITTI odometry.
 #include <filesystem>
 
 #include "common/error.h"
@@ -6,13 +7,16 @@
 
 namespace vilslam {
 
-DatasetIndex index_dataset(const std::string& root) {
+DatasetIndex index_dataset(const std::string& root, const DatasetOptions& options) {
   namespace fs = std::filesystem;
   const fs::path dir(root);
   if (!fs::exists(dir)) throw InputError(root, "dataset folder does not exist");
-  if (!fs::is_directory(dir)) throw InputError(root, "not a folder");
+  const bool bag = fs::is_regular_file(dir) && dir.extension() == ".bag";
+  if (!fs::is_directory(dir) && !bag) throw InputError(root, "not a folder nor a ROS1 .bag file");
   DatasetIndex index;
-  if (fs::exists(dir / "rig.yaml") || fs::exists(dir / "mav0" / "lidar0")) {
+  if (bag) {
+    index = index_rosbag(root, options);
+  } else if (fs::exists(dir / "rig.yaml") || fs::exists(dir / "mav0" / "lidar0")) {
     index = index_vilslam(root);
   } else if (fs::is_directory(dir / "mav0")) {
     index = index_euroc(root);
@@ -25,6 +29,8 @@ DatasetIndex index_dataset(const std::string& root) {
   return index;
 }
 
-std::unique_ptr<DatasetReader> open_dataset(const std::string& path) { return open_indexed(index_dataset(path)); }
+std::unique_ptr<DatasetReader> open_dataset(const std::string& path, const DatasetOptions& options) {
+  return open_indexed(index_dataset(path, options));
+}
 
 }  // namespace vilslam
