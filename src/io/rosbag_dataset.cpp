@@ -1,6 +1,8 @@
 // A ROS1 bag as a dataset (docs/formats.md, "ROS1 bags"): IMU and ground truth are decoded up front,
 // images and sweeps are indexed (header stamp, message ordinal) and decoded when the reader returns them.
 // Times are the messages' header stamps; each stream's stamps must increase strictly.
+#include <yaml-cpp/yaml.h>
+
 #include <filesystem>
 #include <map>
 
@@ -72,14 +74,14 @@ class BagPayloads : public PayloadStore {
 
   StereoFrame stereo(std::size_t i) override {
     StereoFrame frame;
-    frame.t_ns = stereo_[i].t_ns;
-    frame.left = image(topics_.cam0, stereo_[i].left, calib_.cam0);
-    frame.right = image(topics_.cam1, stereo_[i].right, calib_.cam1);
+    frame.t_ns = stereo_ordinals[i].t_ns;
+    frame.left = image(topics_.cam0, stereo_ordinals[i].left, calib_.cam0);
+    frame.right = image(topics_.cam1, stereo_ordinals[i].right, calib_.cam1);
     return frame;
   }
 
   LidarScan scan(std::size_t i) override {
-    const std::size_t ordinal = scans_[i];
+    const std::size_t ordinal = scan_ordinals[i];
     const auto bytes = bag_->message(topics_.lidar0, ordinal);
     return about_message(bag_->path(), topics_.lidar0, ordinal,
                          [&] { return scan_from_point_cloud2(decode_ros_point_cloud2(bytes)); });
@@ -87,12 +89,13 @@ class BagPayloads : public PayloadStore {
 
   BagIn& bag() { return *bag_; }
 
+  // Entry i of the index's stereo (scans) list: the message ordinals on the cam0 and cam1 (lidar0) topics.
   struct StereoOrdinals {
     TimeNs t_ns;
     std::size_t left, right;
   };
-  std::vector<StereoOrdinals> stereo_;
-  std::vector<std::size_t> scans_;
+  std::vector<StereoOrdinals> stereo_ordinals;
+  std::vector<std::size_t> scan_ordinals;
 
  private:
   cv::Mat image(const std::string& topic, std::size_t ordinal, const CameraIntrinsics& cam) {
@@ -114,6 +117,19 @@ class BagPayloads : public PayloadStore {
 std::string default_calibration_path(const std::string& bag_path) {
   fs::path p(bag_path);
   return p.replace_extension(".rig.yaml").string();
+}
+
+// The calibration file's optional `ros_topics` map (role: topic), under the options' topics.
+std::map<std::string, std::string> topic_choices(const std::string& calib_path, const DatasetOptions& options) {
+  std::map<std::string, std::string> topics = options.topics;
+  const YAML::Node node = YAML::LoadFile(calib_path)["ros_topics"];
+  if (!node) return topics;
+  if (!node.IsMap()) throw InputError(calib_path, "ros_topics must be a map of role: topic");
+  for (const auto& entry : node) {
+    if (!entry.second.IsScalar()) throw InputError(calib_path, "ros_topics: " + entry.first.Scalar() + " is not a topic name");
+    topics.emplace(entry.first.Scalar(), entry.second.Scalar());  // an option given wins
+  }
+  return topics;
 }
 
 std::vector<ImuSample> read_imu(const BagIn& bag, const std::string& topic) {
@@ -188,7 +204,7 @@ DatasetIndex index_rosbag(const std::string& bag_path, const DatasetOptions& opt
   index.calibration = read_rig_yaml(calib_path);
 
   auto bag = std::make_unique<BagIn>(bag_path);
-  const BagTopics topics = choose_bag_topics(*bag, options.topics);
+  const BagTopics topics = choose_bag_topics(*bag, topic_choices(calib_path, options));
   auto& listed = index.summary.topics;
   index.imu = read_imu(*bag, topics.imu0);
   listed.push_back("imu0 " + topics.imu0 + " " + kRosImu.datatype);
@@ -205,7 +221,7 @@ DatasetIndex index_rosbag(const std::string& bag_path, const DatasetOptions& opt
     const auto left = index_images(in, topics.cam0, index.calibration.cam0, left_of);
     const auto right = index_images(in, topics.cam1, index.calibration.cam1, right_of);
     index.stereo = pair_stereo(left, right, index.summary.problems);
-    for (const StereoEntry& e : index.stereo) store->stereo_.push_back({e.t_ns, left_of.at(e.t_ns), right_of.at(e.t_ns)});
+    for (const StereoEntry& e : index.stereo) store->stereo_ordinals.push_back({e.t_ns, left_of.at(e.t_ns), right_of.at(e.t_ns)});
     listed.push_back("cam0 " + topics.cam0 + " " + datatype_of(in, topics.cam0));
     listed.push_back("cam1 " + topics.cam1 + " " + datatype_of(in, topics.cam1));
   }
@@ -224,7 +240,7 @@ DatasetIndex index_rosbag(const std::string& bag_path, const DatasetOptions& opt
       require_increasing(bag_path, topics.lidar0, index.scans.empty() ? 0 : index.scans.back().t_ns, scan.t_ns, k);
       index.scans.push_back({scan.t_ns, bag_path + ":" + topics.lidar0 + "@" + std::to_string(scan.t_ns),
                              static_cast<long>(scan.points.size())});
-      store->scans_.push_back(k);
+      store->scan_ordinals.push_back(k);
     });
     listed.push_back("lidar0 " + topics.lidar0 + " " + kRosPointCloud2.datatype + " " + layout);
   }

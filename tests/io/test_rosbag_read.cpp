@@ -4,7 +4,9 @@
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
+#include <fstream>
 
+#include "common/error.h"
 #include "io/dataset.h"
 #include "rosbag_test_util.h"
 #include "synthetic_dataset.h"
@@ -115,6 +117,21 @@ TEST_F(RosbagRead, TopicsCanBeChosenByRole) {
   const StereoFrame a = first_frame(*swapped), b = first_frame(*folder);
   EXPECT_EQ(cv::norm(a.left, b.right, cv::NORM_INF), 0);
   EXPECT_EQ(cv::norm(a.right, b.left, cv::NORM_INF), 0);
+
+  // The same choice as the calibration file's ros_topics map; an option given on top wins.
+  std::ofstream(dir_ / "swap.rig.yaml", std::ios::app) << "ros_topics:\n  cam0: /cam1/image_raw\n  cam1: /cam0/image_raw\n";
+  const StereoFrame c = first_frame(*open_dataset(bag));
+  EXPECT_EQ(cv::norm(c.left, b.right, cv::NORM_INF), 0);
+  options.topics = {{"cam0", "/cam0/image_raw"}, {"cam1", "/cam1/image_raw"}};
+  const StereoFrame d = first_frame(*open_dataset(bag, options));
+  EXPECT_EQ(cv::norm(d.left, b.left, cv::NORM_INF), 0);
+  options.topics = {{"lidar0", "/imu0"}};
+  try {
+    open_dataset(bag, options);
+    ADD_FAILURE() << "an Imu topic taken as lidar0";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/imu0 (given for lidar0) is sensor_msgs/Imu"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
