@@ -15,8 +15,7 @@ namespace vilslam::test {
 // Debian's interpreter: python3-rosbag lives in its dist-packages only.
 constexpr char kDebianPython[] = "/usr/bin/python3";
 
-// Empty when python3-rosbag and the message packages import, else what is wrong. The tests fail on it
-// (scripts/setup installs them), they do not skip.
+// Empty when python3-rosbag and the message packages import, else what is wrong.
 inline std::string python_rosbag_problem() {
   const std::string cmd = std::string(kDebianPython) +
                           " -c 'import rosbag, sensor_msgs.msg, geometry_msgs.msg' > /dev/null 2>&1";
@@ -26,8 +25,16 @@ inline std::string python_rosbag_problem() {
          "python3-geometry-msgs (./scripts/setup does)";
 }
 
-#define VILSLAM_REQUIRE_PYTHON_ROSBAG() \
-  ASSERT_EQ(::vilslam::test::python_rosbag_problem(), "")
+// Without python3-rosbag a test fails under CI=true (scripts/setup installs it there) and skips elsewhere,
+// with the message above (the convention of the real-data tests).
+#define VILSLAM_REQUIRE_PYTHON_ROSBAG()                                                   \
+  if (const std::string problem = ::vilslam::test::python_rosbag_problem(); !problem.empty()) { \
+    const char* ci = std::getenv("CI");                                                   \
+    if (ci != nullptr && std::string(ci) == "true") {                                    \
+      FAIL() << problem;                                                                  \
+    }                                                                                     \
+    GTEST_SKIP() << problem;                                                              \
+  }
 
 // Runs tests/io/rosbag_tool.py with the given arguments; returns its exit code (output in the log).
 inline int rosbag_tool(const std::string& args) {
