@@ -8,6 +8,7 @@
 #include "io/calibration_io.h"
 #include "io/dataset_index.h"
 #include "vilslam/command.h"
+#include "vilslam/dataset_options.h"
 
 namespace {
 
@@ -43,6 +44,10 @@ void print(const DatasetIndex& index, const std::vector<std::string>& sensor_nam
               s.imu_samples, s.lidar_scans, s.groundtruth_poses);
   std::printf("duration_s: %.3f\ncamera_rate_hz: %.3f\nimu_rate_hz: %.3f\nlidar_rate_hz: %.3f\n", duration_s,
               s.camera_rate_hz, s.imu_rate_hz, s.lidar_rate_hz);
+  if (!s.topics.empty()) {
+    std::printf("topics:\n");
+    for (const auto& t : s.topics) std::printf("  - %s\n", t.c_str());
+  }
   std::printf("problems: %zu\n", s.problems.size());
   for (const auto& p : s.problems) std::printf("  - %s\n", p.c_str());
 }
@@ -66,6 +71,11 @@ void write_json(const std::string& path, const DatasetIndex& index, const std::v
   json.key("camera_rate_hz").value(s.camera_rate_hz);
   json.key("imu_rate_hz").value(s.imu_rate_hz);
   json.key("lidar_rate_hz").value(s.lidar_rate_hz);
+  if (!s.topics.empty()) {
+    json.key("topics").begin_array();
+    for (const auto& t : s.topics) json.value(t);
+    json.end_array();
+  }
   json.key("problems").begin_array();
   for (const auto& p : s.problems) json.value(p);
   json.end_array();
@@ -73,14 +83,15 @@ void write_json(const std::string& path, const DatasetIndex& index, const std::v
   json.save(path);
 }
 
-vilslam::cli::Command reg("info", "Describe and validate a dataset (EuRoC ASL, vilslam, KITTI odometry)",
+vilslam::cli::Command reg("info", "Describe and validate a dataset (EuRoC ASL, vilslam, KITTI odometry, ROS1 bag)",
                           [](CLI::App& app) {
   auto opts = std::make_shared<Options>();
-  app.add_option("dataset", opts->dataset, "Dataset folder")->required();
+  app.add_option("dataset", opts->dataset, "Dataset folder or ROS1 .bag file")->required();
+  const auto bag_args = vilslam::cli::add_dataset_options(app);
   app.add_option("--json", opts->json_path, "Also write the summary as JSON to this file");
   app.add_flag("--deep", opts->deep, "Decode every image and scan (default: check headers and sizes only)");
-  return [opts]() {
-    const DatasetIndex index = index_dataset(opts->dataset);
+  return [opts, bag_args]() {
+    const DatasetIndex index = index_dataset(opts->dataset, vilslam::cli::dataset_options(*bag_args));
     check_payloads(index, opts->deep);
     const std::vector<std::string> names = sensors(index);
     const double duration_s = ns_to_s(index.summary.end_t_ns - index.summary.start_t_ns);

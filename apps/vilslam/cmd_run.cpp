@@ -10,6 +10,7 @@
 #include "pipeline/run_outputs.h"
 #include "pipeline/timing_stats.h"
 #include "vilslam/command.h"
+#include "vilslam/dataset_options.h"
 
 namespace {
 
@@ -54,14 +55,15 @@ vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and writ
                           [](CLI::App& app) {
   auto o = std::make_shared<Options>();
   app.add_option("--mode", o->mode, "Pipeline mode")->check(CLI::IsMember({"vio", "vil", "lidar-only"}))->capture_default_str();
-  app.add_option("dataset", o->dataset, "Dataset folder (EuRoC or the project's format)")->required();
+  app.add_option("dataset", o->dataset, "Dataset folder (EuRoC, KITTI or the project's format) or ROS1 .bag file")->required();
+  const auto bag_args = vilslam::cli::add_dataset_options(app);
   app.add_option("--out", o->out_dir, "Output folder (replaced)")->required();
   app.add_option("--config", o->config_path,
                  "Run YAML with optional sections frontend, vio, lidar_mapper (config/run_default.yaml); default: built-in");
-  return [o]() {
+  return [o, bag_args]() {
     OfflineRunConfig config = o->config_path.empty() ? OfflineRunConfig{} : load_run_config(o->config_path);
     config.mode = parse_run_mode(o->mode);
-    const auto reader = open_dataset(o->dataset);
+    const auto reader = open_dataset(o->dataset, vilslam::cli::dataset_options(*bag_args));
     const OfflineRunResult result = run_offline(*reader, config);
     write_run_outputs(o->out_dir, config, result);
     print_summary(result);

@@ -2,6 +2,7 @@
 // A dataset is read as one time-ordered stream of sensor events. Readers index the sequence up front
 // (CSV rows, file names) and load images and scans only when their event is returned, so a sequence
 // is never held in memory as a whole.
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -33,6 +34,13 @@ struct DatasetSummary {
   double lidar_rate_hz = 0;
   std::vector<std::string> problems;  // skipped rows, gaps larger than 1.5 periods, missing files
   std::string calibration = "layout";  // "layout", or "kalibr" when Kalibr files beside the data replaced it
+  std::vector<std::string> topics;    // ROS bags: "role topic type [layout]" of each stream read
+};
+
+// How to open a dataset given as a ROS1 bag file (docs/formats.md, "ROS1 bags"); folders ignore it.
+struct DatasetOptions {
+  std::string calibration_path;               // rig YAML; default: <bag without .bag>.rig.yaml beside it
+  std::map<std::string, std::string> topics;  // role (cam0, cam1, imu0, lidar0, groundtruth) -> topic
 };
 
 class DatasetReader {
@@ -50,8 +58,8 @@ class DatasetReader {
   virtual std::string reference_model_path() const { return {}; }
 };
 
-// Detects the layout (EuRoC ASL, the project's folder format, KITTI odometry) and opens it.
+// Detects the layout (EuRoC ASL, the project's folder format, KITTI odometry, a ROS1 bag file) and opens it.
 // Throws InputError naming the path when it is missing or not a known layout.
-std::unique_ptr<DatasetReader> open_dataset(const std::string& path);
+std::unique_ptr<DatasetReader> open_dataset(const std::string& path, const DatasetOptions& options = {});
 
 }  // namespace vilslam

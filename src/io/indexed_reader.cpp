@@ -25,8 +25,8 @@ class IndexedReader : public DatasetReader {
     switch (stream) {
       case kImu: event.data = index_.imu[i]; break;
       case kGroundTruth: event.data = index_.groundtruth[i]; break;
-      case kStereo: event.data = load_stereo(index_.stereo[i]); break;
-      default: event.data = load_scan(index_.scans[i], index_.scan_encoding); break;
+      case kStereo: event.data = load_stereo(index_, i); break;
+      default: event.data = load_scan(index_, i); break;
     }
     event.t_ns = std::visit([](const auto& d) { return d.t_ns; }, event.data);
     return event;

@@ -1,5 +1,5 @@
-// Layout detection: the project's format (rig.yaml or mav0/lidar0), EuRoC ASL (mav0/), KITTI odometry;
-// then Kalibr calibration files in the folder, when there are any.
+// Layout detection: a ROS1 bag (a .bag file), the project's format (rig.yaml or mav0/lidar0), EuRoC ASL
+// (mav0/), KITTI odometry; then, for folders, Kalibr calibration files in the folder when there are any.
 #include <filesystem>
 
 #include "common/error.h"
@@ -8,13 +8,16 @@
 
 namespace vilslam {
 
-DatasetIndex index_dataset(const std::string& root) {
+DatasetIndex index_dataset(const std::string& root, const DatasetOptions& options) {
   namespace fs = std::filesystem;
   const fs::path dir(root);
   if (!fs::exists(dir)) throw InputError(root, "dataset folder does not exist");
-  if (!fs::is_directory(dir)) throw InputError(root, "not a folder");
+  const bool bag = fs::is_regular_file(dir) && dir.extension() == ".bag";
+  if (!fs::is_directory(dir) && !bag) throw InputError(root, "not a folder nor a ROS1 .bag file");
   DatasetIndex index;
-  if (fs::exists(dir / "rig.yaml") || fs::exists(dir / "mav0" / "lidar0")) {
+  if (bag) {
+    index = index_rosbag(root, options);
+  } else if (fs::exists(dir / "rig.yaml") || fs::exists(dir / "mav0" / "lidar0")) {
     index = index_vilslam(root);
   } else if (fs::is_directory(dir / "mav0")) {
     index = index_euroc(root);
@@ -24,11 +27,13 @@ DatasetIndex index_dataset(const std::string& root) {
     throw InputError(root, "unknown dataset layout (expected mav0/, rig.yaml, or KITTI calib.txt and times.txt)");
   }
   // A user's Kalibr calibration next to the data replaces the layout's (docs/formats.md).
-  if (apply_kalibr_folder(root, index.calibration)) index.summary.calibration = "kalibr";
+  if (!bag && apply_kalibr_folder(root, index.calibration)) index.summary.calibration = "kalibr";
   finalize_summary(index);
   return index;
 }
 
-std::unique_ptr<DatasetReader> open_dataset(const std::string& path) { return open_indexed(index_dataset(path)); }
+std::unique_ptr<DatasetReader> open_dataset(const std::string& path, const DatasetOptions& options) {
+  return open_indexed(index_dataset(path, options));
+}
 
 }  // namespace vilslam

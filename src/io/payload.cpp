@@ -81,11 +81,21 @@ LidarScan load_scan(const ScanEntry& entry, ScanEncoding encoding) {
   return scan;
 }
 
+StereoFrame load_stereo(const DatasetIndex& index, std::size_t i) {
+  return index.store ? index.store->stereo(i) : load_stereo(index.stereo[i]);
+}
+
+LidarScan load_scan(const DatasetIndex& index, std::size_t i) {
+  return index.store ? index.store->scan(i) : load_scan(index.scans[i], index.scan_encoding);
+}
+
 void check_payloads(const DatasetIndex& index, bool deep) {
   const RigCalibration& calib = index.calibration;
-  for (const StereoEntry& e : index.stereo) {
+  if (index.store && !deep) return;
+  for (std::size_t i = 0; i < index.stereo.size(); ++i) {
+    const StereoEntry& e = index.stereo[i];
     if (deep) {
-      const StereoFrame f = load_stereo(e);
+      const StereoFrame f = load_stereo(index, i);
       check_size(e.left_path, f.left.cols, f.left.rows, calib.cam0);
       check_size(e.right_path, f.right.cols, f.right.rows, calib.cam1);
     } else {
@@ -95,9 +105,10 @@ void check_payloads(const DatasetIndex& index, bool deep) {
       check_size(e.right_path, w1, h1, calib.cam1);
     }
   }
-  for (const ScanEntry& e : index.scans) {
+  for (std::size_t i = 0; i < index.scans.size(); ++i) {
+    const ScanEntry& e = index.scans[i];
     if (deep) {
-      load_scan(e, index.scan_encoding);
+      load_scan(index, i);
     } else {
       check_point_count(e, index.scan_encoding == ScanEncoding::kVilslam ? check_scan_file(e.path)
                                                                           : check_kitti_scan(e.path));

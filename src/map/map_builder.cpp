@@ -96,14 +96,15 @@ MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory
   if (index.scans.empty()) throw InputError(dataset_path, "dataset has no LiDAR scans");
   const TimeNs offset_ns = index.calibration.lidar_time_offset_ns;
   const TimeNs max_gap_ns = s_to_ns(config.max_pose_gap_s);
-  for (const ScanEntry& entry : index.scans) {
+  for (std::size_t i = 0; i < index.scans.size(); ++i) {
+    const ScanEntry& entry = index.scans[i];
     // The sweep start is checked before loading; the end is known only from the points.
     const TimeNs start_t_ns = entry.t_ns + offset_ns;
     if (!covers(T_W_L, start_t_ns, start_t_ns, max_gap_ns)) {
       ++result.stats.sweeps_skipped;
       continue;
     }
-    LidarScan scan = load_scan(entry, index.scan_encoding);
+    LidarScan scan = load_scan(index, i);
     scan.t_ns += offset_ns;
     if (scan.points.empty() || !covers(T_W_L, scan.t_ns, scan.end_t_ns(), max_gap_ns)) {
       ++result.stats.sweeps_skipped;

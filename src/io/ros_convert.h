@@ -1,0 +1,34 @@
+#pragma once
+// ROS1 messages <-> the project's sensor types. Errors are WireErrors saying what is wrong with the
+// message; the bag reader adds the file, topic and message time.
+#include <string>
+
+#include "common/types.h"
+#include "io/ros_messages.h"
+
+namespace vilslam {
+
+// sensor_msgs/Image with encoding mono8, rgb8 or bgr8 (any row padding) as an 8-bit grey image
+// (colour: cv::cvtColor, which maps R = G = B = v to v exactly).
+cv::Mat grey_from_ros_image(const RosImage& image);
+// Cheap check of the same message without converting: encoding, sizes, data length.
+void check_ros_image(const RosImage& image);
+// sensor_msgs/CompressedImage (PNG or JPEG; the format string is informative) decoded to 8-bit grey.
+cv::Mat grey_from_ros_compressed_image(const RosCompressedImage& image);
+// An 8-bit grey image as a mono8 sensor_msgs/Image.
+RosImage ros_image_from_grey(const cv::Mat& grey, TimeNs t_ns, const std::string& frame_id);
+
+// The driver layout a PointCloud2 follows, named after its time field (docs/formats.md):
+// "velodyne" (time, s since the stamp), "ouster" (t, ns since the stamp), "hesai" (timestamp, absolute,
+// with ring), "livox" (timestamp without ring, or offset_time in ns since the stamp), "xyz" (no time).
+std::string point_cloud2_layout(const RosPointCloud2& cloud);
+// A PointCloud2 as a sweep: x y z (required), intensity, ring (has_ring when present) and per-point time.
+// Points with a non-finite coordinate or at the origin (no return) are dropped. t_ns is the stamp, or the
+// earliest point's time when a point lies before it; offsets count from t_ns.
+LidarScan scan_from_point_cloud2(const RosPointCloud2& cloud);
+// A sweep in the Velodyne driver's layout (velodyne_pointcloud PointcloudXYZIRT: x y z intensity float32,
+// ring uint16, time float32 seconds since the stamp; 22 bytes a point, packed), stamp = scan.t_ns.
+// Without rings (has_ring false) the ring field is left out (20 bytes a point).
+RosPointCloud2 velodyne_point_cloud2(const LidarScan& scan, const std::string& frame_id);
+
+}  // namespace vilslam

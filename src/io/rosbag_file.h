@@ -1,0 +1,62 @@
+#pragma once
+// ROS1 bag files through Debian's rosbag_storage (a storage library only: no ROS master, no workspace).
+// Messages are handled as their serialized bytes (ros_messages.h decodes them). Every failure of the
+// storage library (not a bag, truncated, unindexed) becomes an InputError naming the file.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/time.h"
+#include "io/ros_messages.h"
+
+namespace vilslam {
+
+struct BagTopic {
+  std::string topic;
+  std::string datatype;
+  std::string md5sum;
+  std::size_t messages = 0;
+};
+
+class BagIn {
+ public:
+  explicit BagIn(const std::string& path);
+  ~BagIn();
+  BagIn(const BagIn&) = delete;
+  BagIn& operator=(const BagIn&) = delete;
+
+  const std::string& path() const;
+  // Every topic, sorted by name (a topic with connections of two types is an InputError).
+  const std::vector<BagTopic>& topics() const;
+  // Visits the messages of a topic in bag order: visit(ordinal, serialized bytes).
+  void for_each(const std::string& topic,
+                const std::function<void(std::size_t, const std::vector<std::uint8_t>&)>& visit) const;
+  // The bytes of message `ordinal` of a topic; cheap when each topic is asked in increasing order.
+  std::vector<std::uint8_t> message(const std::string& topic, std::size_t ordinal);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Writes <path>.partial and renames it to <path> in finish(); destroyed without finish() it removes the
+// partial file, so an interrupted export never leaves a bag behind.
+class BagOut {
+ public:
+  explicit BagOut(const std::string& path);
+  ~BagOut();
+  BagOut(const BagOut&) = delete;
+  BagOut& operator=(const BagOut&) = delete;
+
+  // Record time = t_ns (the message's header stamp).
+  void write(const std::string& topic, const RosMessageType& type, TimeNs t_ns, const std::vector<std::uint8_t>& bytes);
+  void finish();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vilslam
