@@ -30,7 +30,8 @@ vilslam::cli::Command reg("simulate", "Simulate a scenario as a stereo + IMU + L
   app.add_option("--seed", o->seed, "Random seed (world, noise)")->capture_default_str();
   auto* length = app.add_option("--length", o->length_m, "Route length in metres (default: the paper's)")
                      ->check(CLI::PositiveNumber);
-  app.add_option("--duration", o->duration_s, "Size the route so the sequence lasts this many seconds")
+  app.add_option("--duration", o->duration_s,
+                 "Size the route so the sequence lasts this many seconds (with --trajectory: fly its first seconds)")
       ->check(CLI::PositiveNumber)
       ->excludes(length);
   app.add_flag("--preview", o->preview, "Only the first seconds (config preview_duration_s), coarse model");

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -36,9 +37,28 @@ struct Scene {
   std::unique_ptr<BodyMotion> motion;
 };
 
+// A recorded ground truth cut to its first duration_s (0: whole), the room grown around what is flown.
+Scene recorded_flight_scene(const SimConfig& config, const SimulateRequest& request) {
+  Trajectory poses = read_trajectory(request.trajectory_path, TrajectoryFormat::kTum);
+  if (request.duration_s > 0 && !poses.empty()) {
+    const TimeNs end_ns = poses.front().t_ns + s_to_ns(request.duration_s);
+    poses.erase(std::find_if(poses.begin(), poses.end(), [&](const TimedPose& p) { return p.t_ns > end_ns; }),
+                poses.end());
+  }
+  if (poses.size() < 2)
+    throw InputError(request.trajectory_path, "needs at least 2 poses" +
+                                                  std::string(request.duration_s > 0 ? " within --duration" : ""));
+  Eigen::AlignedBox3d flight_W;
+  for (const TimedPose& pose : poses) flight_W.extend(pose.T_W_B.translation());
+  Scene scene{World::generate(request.scenario, request.seed, std::max(0.0, request.length_m), flight_W), nullptr};
+  scene.motion = std::make_unique<PoseSplineMotion>(poses, config.pose_spline);
+  return scene;
+}
+
 // The world and the motion through it: a recorded ground truth, or the world's closed route flown at
 // the configured speed (or at the speed that makes it last request.duration_s).
 Scene make_scene(const SimConfig& config, const SimulateRequest& request) {
+  if (!request.trajectory_path.empty()) return recorded_flight_scene(config, request);
   RouteMotionConfig motion_config = route_motion_config(config, request.scenario);
   const double min_duration_s = motion_config.rest_start_s + motion_config.rest_end_s + motion_config.ramp_s;
   if (request.duration_s > 0 && request.duration_s <= min_duration_s)
@@ -47,15 +67,6 @@ Scene make_scene(const SimConfig& config, const SimulateRequest& request) {
   if (request.duration_s > 0 && length_m <= 0)
     length_m = motion_config.cruise_speed_m_s *
                (request.duration_s - motion_config.rest_start_s - motion_config.rest_end_s - motion_config.ramp_s);
-  if (!request.trajectory_path.empty()) {
-    const Trajectory poses = read_trajectory(request.trajectory_path, TrajectoryFormat::kTum);
-    if (poses.size() < 2) throw InputError(request.trajectory_path, "needs at least 2 poses");
-    Eigen::AlignedBox3d flight_W;
-    for (const TimedPose& pose : poses) flight_W.extend(pose.T_W_B.translation());
-    Scene scene{World::generate(request.scenario, request.seed, std::max(0.0, length_m), flight_W), nullptr};
-    scene.motion = std::make_unique<PoseSplineMotion>(poses, config.pose_spline);
-    return scene;
-  }
   Scene scene{World::generate(request.scenario, request.seed, std::max(0.0, length_m)), nullptr};
   if (request.duration_s > 0) {
     const RouteMotion probe(scene.world.route_W(), motion_config);

@@ -100,6 +100,26 @@ TEST(Simulate, EurocFlightKeepsTheRealImuTimestamps) {
   EXPECT_GT(reader->calibration().imu.accel_noise_density, 2 * ImuNoise{}.accel_noise_density);
 }
 
+TEST(Simulate, EurocFlightCutToItsFirstSeconds) {
+  VILSLAM_REQUIRE_SHARED_DATA(mav0, "euroc/V1_01_easy_micro/mav0");
+  const std::string gt = mav0 + "/state_groundtruth_estimate0/groundtruth.tum";
+  const std::string imu = mav0 + "/imu0/data.csv";
+  const fs::path out = test::temp_dir() / "flight";
+  const test::CliResult r = test::run_cli("simulate room --duration 1 --trajectory " + gt + " --imu " + imu +
+                                          " --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto reader = open_dataset(out.string());
+  const std::vector<GroundTruthState>& truth = reader->groundtruth();
+  ASSERT_GT(truth.size(), 100u);
+  EXPECT_NEAR(ns_to_s(truth.back().t_ns - truth.front().t_ns), 1.0, 0.02);
+  EXPECT_EQ(reader->summary().stereo_frames, 20u);
+  // A cut that leaves fewer than two poses is refused, naming the trajectory.
+  const test::CliResult none = test::run_cli("simulate room --duration 0.001 --trajectory " + gt + " --imu " + imu +
+                                             " --out " + (test::temp_dir() / "none").string());
+  EXPECT_EQ(none.exit_code, 2) << none.output;
+  EXPECT_NE(none.output.find("within --duration"), std::string::npos) << none.output;
+}
+
 TEST(Simulate, BadInputExitsWithCode2) {
   const fs::path dir = test::temp_dir();
   EXPECT_EQ(test::run_cli("simulate nowhere --out " + (dir / "x").string()).exit_code, 2);
