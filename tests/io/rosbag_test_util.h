@@ -8,6 +8,7 @@
 #include <string>
 
 #include "io/dataset.h"
+#include "synthetic_dataset.h"
 #include "test_util.h"
 
 namespace vilslam::test {
@@ -27,13 +28,10 @@ inline std::string python_rosbag_problem() {
 
 // Without python3-rosbag a test fails under CI=true (scripts/setup installs it there) and skips elsewhere,
 // with the message above (the convention of the real-data tests).
-#define VILSLAM_REQUIRE_PYTHON_ROSBAG()                                                   \
+#define VILSLAM_REQUIRE_PYTHON_ROSBAG()                                                          \
   if (const std::string problem = ::vilslam::test::python_rosbag_problem(); !problem.empty()) { \
-    const char* ci = std::getenv("CI");                                                   \
-    if (ci != nullptr && std::string(ci) == "true") {                                    \
-      FAIL() << problem;                                                                  \
-    }                                                                                     \
-    GTEST_SKIP() << problem;                                                              \
+    if (::vilslam::test::under_ci()) FAIL() << problem;                                         \
+    GTEST_SKIP() << problem;                                                                     \
   }
 
 // Runs tests/io/rosbag_tool.py with the given arguments; returns its exit code (output in the log).
@@ -42,6 +40,31 @@ inline int rosbag_tool(const std::string& args) {
   const int status = std::system(cmd.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
+
+// A synthetic dataset folder (tests/io/synthetic_dataset.h) in a fresh temp dir, and bags written from it
+// by ROS's own writer.
+class RosbagFixture : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    VILSLAM_REQUIRE_PYTHON_ROSBAG();
+    dir_ = temp_dir();
+    folder_ = (dir_ / "synthetic").string();
+    data_ = make_synthetic_data();
+    write_synthetic_dataset(folder_, data_);
+  }
+
+  // A bag of the folder written by rosbag_tool.py; its calibration beside it unless with_calibration is false.
+  std::string python_bag(const std::string& name, const std::string& options, bool with_calibration = true) {
+    const std::string bag = (dir_ / (name + ".bag")).string();
+    EXPECT_EQ(rosbag_tool("write " + folder_ + " " + bag + " " + options), 0) << options;
+    if (with_calibration) std::filesystem::copy_file(std::filesystem::path(folder_) / "rig.yaml", dir_ / (name + ".rig.yaml"));
+    return bag;
+  }
+
+  std::filesystem::path dir_;
+  std::string folder_;
+  SyntheticData data_;
+};
 
 struct StreamTolerance {
   double point_time_s = 0;  // per-point time offsets

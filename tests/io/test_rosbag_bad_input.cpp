@@ -14,19 +14,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class RosbagBadInput : public ::testing::Test {
+class RosbagBadInput : public test::RosbagFixture {
  protected:
-  void SetUp() override {
-    VILSLAM_REQUIRE_PYTHON_ROSBAG();
-    dir_ = test::temp_dir();
-    folder_ = (dir_ / "synthetic").string();
-    test::write_synthetic_dataset(folder_, test::make_synthetic_data());
-  }
-
   std::string python_bag(const std::string& name, const std::string& options) {
-    const std::string bag = (dir_ / (name + ".bag")).string();
-    EXPECT_EQ(test::rosbag_tool("write " + folder_ + " " + bag + " " + options), 0);
-    return bag;
+    return RosbagFixture::python_bag(name, options, false);
   }
 
   // info (with --json), run and export-bag on the bag: each exit 2, message naming the bag and every
@@ -49,8 +40,6 @@ class RosbagBadInput : public ::testing::Test {
     }
   }
 
-  fs::path dir_;
-  std::string folder_;
 };
 
 TEST_F(RosbagBadInput, TruncatedBags) {

@@ -16,22 +16,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class RosbagExport : public ::testing::Test {
+class RosbagExport : public test::RosbagFixture {
  protected:
   void SetUp() override {
-    VILSLAM_REQUIRE_PYTHON_ROSBAG();
-    dir_ = test::temp_dir();
-    folder_ = (dir_ / "synthetic").string();
-    data_ = test::make_synthetic_data();
-    test::write_synthetic_dataset(folder_, data_);
+    RosbagFixture::SetUp();
+    if (IsSkipped() || HasFailure()) return;
     bag_ = (dir_ / "out.bag").string();
     const auto r = test::run_cli("export-bag " + folder_ + " --out " + bag_);
     ASSERT_EQ(r.exit_code, 0) << r.output;
   }
 
-  fs::path dir_;
-  std::string folder_, bag_;
-  test::SyntheticData data_;
+  std::string bag_;
 };
 
 template <typename T>

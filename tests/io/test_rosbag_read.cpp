@@ -17,26 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class RosbagRead : public ::testing::Test {
- protected:
-  void SetUp() override {
-    VILSLAM_REQUIRE_PYTHON_ROSBAG();
-    dir_ = test::temp_dir();
-    folder_ = (dir_ / "synthetic").string();
-    test::write_synthetic_dataset(folder_, test::make_synthetic_data());
-  }
-
-  // A bag of the folder written by ROS's writer; its calibration beside it unless with_calibration is false.
-  std::string python_bag(const std::string& name, const std::string& options, bool with_calibration = true) {
-    const std::string bag = (dir_ / (name + ".bag")).string();
-    EXPECT_EQ(test::rosbag_tool("write " + folder_ + " " + bag + " " + options), 0) << options;
-    if (with_calibration) fs::copy_file(fs::path(folder_) / "rig.yaml", dir_ / (name + ".rig.yaml"));
-    return bag;
-  }
-
-  fs::path dir_;
-  std::string folder_;
-};
+using RosbagRead = test::RosbagFixture;
 
 struct LayoutCase {
   const char* layout;
