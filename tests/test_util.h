@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <system_error>
 #include <vector>
 
 namespace vilslam::test {
@@ -57,12 +58,32 @@ inline std::string read_file_bytes(const std::filesystem::path& path) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-// A fresh empty folder under the temp dir, unique per test and per process (test binaries of several
-// worktrees may run at the same time).
+// This process's folder under the temp dir (test binaries of several worktrees may run at the same time).
+// Everything a test writes goes below it; it is removed when the process's tests all pass and kept, with
+// a message naming it, when one fails.
+inline std::filesystem::path process_temp_root() {
+  return std::filesystem::temp_directory_path() / "vilslam_tests" / std::to_string(::getpid());
+}
+
+class TempRootCleanup : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    if (!::testing::UnitTest::GetInstance()->Passed()) {
+      std::printf("test files kept in %s\n", process_temp_root().c_str());
+      return;
+    }
+    std::error_code ignored;
+    std::filesystem::remove_all(process_temp_root(), ignored);
+  }
+};
+
+// Registered before main() runs in every test binary that includes this header; gtest owns it.
+inline ::testing::Environment* const kTempRootCleanup = ::testing::AddGlobalTestEnvironment(new TempRootCleanup);
+
+// A fresh empty folder under process_temp_root(), unique per test.
 inline std::filesystem::path temp_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  std::filesystem::path dir = std::filesystem::temp_directory_path() / "vilslam_tests" / std::to_string(::getpid()) /
-                              (std::string(info->test_suite_name()) + "." + info->name());
+  std::filesystem::path dir = process_temp_root() / (std::string(info->test_suite_name()) + "." + info->name());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
@@ -76,8 +97,7 @@ struct CliResult {
 // Runs the built `vilslam` CLI with the given argument string.
 inline CliResult run_cli(const std::string& args) {
   static int counter = 0;
-  const std::filesystem::path out = std::filesystem::temp_directory_path() / "vilslam_tests" /
-                                    ("cli_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + ".txt");
+  const std::filesystem::path out = process_temp_root() / ("cli_" + std::to_string(counter++) + ".txt");
   std::filesystem::create_directories(out.parent_path());
   const std::string cmd = std::string(VILSLAM_CLI) + " " + args + " > " + out.string() + " 2>&1";
   const int status = std::system(cmd.c_str());

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "common/json_writer.h"
+#include "test_util.h"
 
 namespace vilslam {
 namespace {
@@ -30,7 +31,7 @@ TEST(JsonWriter, DoublesRoundTripAndSaveIsAtomic) {
   JsonWriter j;
   j.begin_array().value(0.1).value(1e-300).end_array();
   EXPECT_NE(j.str().find("0.10000000000000001"), std::string::npos);
-  const auto dir = std::filesystem::temp_directory_path() / "vilslam_tests" / "json_writer";
+  const auto dir = ::vilslam::test::temp_dir();
   std::filesystem::create_directories(dir);
   const auto path = dir / "out.json";
   j.save(path.string());

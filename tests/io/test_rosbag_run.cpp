@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 class RosbagRun : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(fs::temp_directory_path() / "vilslam_tests" / std::to_string(::getpid()) / "RosbagRun");
+    dir_ = new fs::path(test::process_temp_root() / "RosbagRun");
     fs::remove_all(*dir_);
     fs::create_directories(*dir_);
     const auto sim = test::run_cli("simulate highbay --preview --seed 3 --out " + folder().string());

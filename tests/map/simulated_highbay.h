@@ -16,7 +16,7 @@ constexpr std::uint64_t kHighbaySeed = 3;
 inline const std::string& highbay_preview() {
   static const std::string path = [] {
     const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / "vilslam_tests" / std::to_string(::getpid()) / "map_highbay_seed3";
+        process_temp_root() / "map_highbay_seed3";
     std::filesystem::remove_all(dir);
     const CliResult sim =
         run_cli("simulate highbay --preview --seed " + std::to_string(kHighbaySeed) + " --out " + dir.string());

@@ -25,7 +25,7 @@ constexpr const char* kShortGapConfig = "loop_closure:\n  min_time_gap_s: 4.0\n"
 class LoopClosureRun : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    const fs::path dir = fs::temp_directory_path() / "vilslam_tests" / std::to_string(::getpid()) / "room8";
+    const fs::path dir = test::process_temp_root() / "room8";
     fs::remove_all(dir);
     fs::create_directories(dir);
     data_ = new fs::path(dir / "data");

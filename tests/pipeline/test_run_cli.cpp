@@ -77,7 +77,7 @@ TEST(RunCli, BadInputExitsTwo) {
 class SimulatedHighbay : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    const fs::path dir = fs::temp_directory_path() / "vilslam_tests" / std::to_string(::getpid()) / "highbay_seed3";
+    const fs::path dir = test::process_temp_root() / "highbay_seed3";
     fs::remove_all(dir);
     data_ = new std::string(dir.string());
     const test::CliResult sim = test::run_cli("simulate highbay --preview --seed 3 --out " + *data_);
