@@ -93,10 +93,13 @@ KeyImage make_key_image(const StereoFrame& frame, const StereoRig& rig, const Fr
   return key;
 }
 
-bool is_new_key_frame(const SE3& T_W_L_last_key, const SE3& T_W_L, const KeyFramePolicy& policy) {
+bool is_new_key_frame(const SE3& T_W_L_last_key, const SE3& T_W_L_prev, const SE3& T_W_L, double dt_s,
+                      const KeyFramePolicy& policy) {
   const SE3 T_last_cur = T_W_L_last_key.inverse() * T_W_L;
-  return T_last_cur.translation().norm() >= policy.min_translation_m ||
-         so3::log(T_last_cur.quat()).norm() >= policy.min_rotation_rad;
+  const double moved_m = T_last_cur.translation().norm();
+  if (moved_m >= policy.min_translation_m || so3::log(T_last_cur.quat()).norm() >= policy.min_rotation_rad) return true;
+  const bool stopped = dt_s > 0.0 && (T_W_L.translation() - T_W_L_prev.translation()).norm() / dt_s < policy.stop_max_speed_mps;
+  return policy.stop_min_translation_m > 0.0 && stopped && moved_m >= policy.stop_min_translation_m;
 }
 
 }  // namespace vilslam::loop

@@ -50,9 +50,17 @@ struct KeyFrame {
 struct KeyFramePolicy {
   double min_translation_m = 1.0;
   double min_rotation_rad = 0.26;      // 15 degrees
+  // A robot that comes to rest (slower than stop_max_speed_mps since the previous mapped sweep) after moving
+  // at least stop_min_translation_m since the last key frame gets one there: robots park where they started,
+  // and the view at rest is the one the first key frame saw. 0 turns it off.
+  double stop_min_translation_m = 0.1;
+  double stop_max_speed_mps = 0.05;
   double max_image_scan_gap_s = 0.03;  // a key image lies at most this far in time from its key scan's end
 };
 
-bool is_new_key_frame(const SE3& T_W_L_last_key, const SE3& T_W_L, const KeyFramePolicy& policy);
+// Whether the sweep at T_W_L is a new key scan, after the last key scan at T_W_L_last_key; the previous
+// mapped sweep was at T_W_L_prev, dt_s earlier.
+bool is_new_key_frame(const SE3& T_W_L_last_key, const SE3& T_W_L_prev, const SE3& T_W_L, double dt_s,
+                      const KeyFramePolicy& policy);
 
 }  // namespace vilslam::loop

@@ -13,6 +13,8 @@ YamlFields loop_closure_yaml_fields(LoopClosureConfig& c) {
       yaml_value("enabled", c.enabled),
       yaml_section("key_frames", {yaml_value("min_translation_m", k.min_translation_m),
                                   yaml_value("min_rotation_rad", k.min_rotation_rad),
+                                  yaml_value("stop_min_translation_m", k.stop_min_translation_m),
+                                  yaml_value("stop_max_speed_mps", k.stop_max_speed_mps),
                                   yaml_value("max_image_scan_gap_s", k.max_image_scan_gap_s)}),
       yaml_value("min_time_gap_s", c.min_time_gap_s),
       yaml_value("max_bow_candidates", c.max_bow_candidates),
@@ -50,6 +52,8 @@ void validate_loop_closure_config(const LoopClosureConfig& c, const std::string&
   const KeyFramePolicy& k = c.key_frames;
   require(k.min_translation_m > 0 && k.min_rotation_rad > 0,
           "key_frames.min_translation_m and min_rotation_rad must be positive");
+  require(k.stop_min_translation_m >= 0 && k.stop_max_speed_mps >= 0,
+          "key_frames.stop_min_translation_m and stop_max_speed_mps must not be negative");
   require(k.max_image_scan_gap_s >= 0, "key_frames.max_image_scan_gap_s must not be negative");
   require(c.min_time_gap_s >= 0, "min_time_gap_s must not be negative");
   require(c.max_bow_candidates >= 1, "max_bow_candidates must be at least 1");

@@ -137,11 +137,11 @@ std::string loops_csv(const std::vector<LoopCandidateRecord>& records) {
 std::string loop_candidates_csv(const std::vector<LoopCandidateRecord>& records) {
   std::ostringstream out;
   out << std::setprecision(17) << "# query_t_ns,candidate_t_ns,query_key_frame,candidate_key_frame," << kScoreHeader
-      << ",stage\n";
+      << ",icp_matched_fraction,stage\n";
   for (const LoopCandidateRecord& r : records) {
     out << r.query_t_ns << ',' << r.candidate_t_ns << ',' << r.query_key_frame << ',' << r.candidate_key_frame;
     write_scores(out, r);
-    out << ',' << (r.accepted() ? "accepted" : r.rejected_by) << '\n';
+    out << ',' << r.icp_matched_fraction << ',' << (r.accepted() ? "accepted" : r.rejected_by) << '\n';
   }
   return out.str();
 }

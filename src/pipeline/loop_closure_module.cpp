@@ -116,8 +116,9 @@ void LoopClosureModule::scan_mapped(const lidar::LidarMappingResult& mapped, con
   last_mapper_T_W_L_ = mapped.T_W_L;
   out_.lidar_global.push_back({mapped.t_ns, mapped.T_W_L});  // as published now
   if (!closer_ || pending_) return;
-  if (last_key_index_ &&
-      !loop::is_new_key_frame(graph_.pose(*last_key_index_), graph_.pose(index), config_.key_frames)) {
+  if (last_key_index_ && !loop::is_new_key_frame(graph_.pose(*last_key_index_), graph_.pose(index - 1),
+                                                  graph_.pose(index), ns_to_s(mapped.t_ns - graph_.trajectory()[index - 1].t_ns),
+                                                  config_.key_frames)) {
     return;
   }
   pending_ = PendingKeyScan{mapped.t_ns, index, features_L};

@@ -304,9 +304,28 @@ TEST(LoopKeyImage, RejectsImagesThatDoNotFitTheRig) {
 TEST(LoopKeyFrames, PolicyNeedsEnoughMotionOrTurn) {
   const KeyFramePolicy policy;  // 1 m, 15 deg
   const SE3 T_W_L(so3::exp(Vec3(0.1, 0.2, 0.3)), Vec3(5, 6, 7));
-  EXPECT_FALSE(is_new_key_frame(T_W_L, T_W_L * SE3(so3::exp(Vec3(0, 0, 10 * kDeg)), Vec3(0.9, 0, 0)), policy));
-  EXPECT_TRUE(is_new_key_frame(T_W_L, T_W_L * SE3(Mat3::Identity(), Vec3(0, 1.01, 0)), policy));
-  EXPECT_TRUE(is_new_key_frame(T_W_L, T_W_L * SE3(so3::exp(Vec3(16 * kDeg, 0, 0)), Vec3::Zero()), policy));
+  // Moving at 1 m/s between sweeps 0.1 s apart: only motion or turn counts.
+  const auto key = [&](const SE3& T_W_Lcur) {
+    return is_new_key_frame(T_W_L, T_W_Lcur * SE3(Mat3::Identity(), Vec3(-0.1, 0, 0)), T_W_Lcur, 0.1, policy);
+  };
+  EXPECT_FALSE(key(T_W_L * SE3(so3::exp(Vec3(0, 0, 10 * kDeg)), Vec3(0.9, 0, 0))));
+  EXPECT_TRUE(key(T_W_L * SE3(Mat3::Identity(), Vec3(0, 1.01, 0))));
+  EXPECT_TRUE(key(T_W_L * SE3(so3::exp(Vec3(16 * kDeg, 0, 0)), Vec3::Zero())));
+}
+
+TEST(LoopKeyFrames, RobotComingToRestGetsAKeyFrameOnce) {
+  KeyFramePolicy policy;  // 0.1 m from the last key frame, below 0.05 m/s
+  const SE3 T_W_Lkey(so3::exp(Vec3(0.1, 0.2, 0.3)), Vec3(5, 6, 7));
+  const SE3 T_W_Lrest = T_W_Lkey * SE3(Mat3::Identity(), Vec3(0.35, 0, 0));
+  const SE3 T_W_Lcreep = T_W_Lrest * SE3(Mat3::Identity(), Vec3(-0.004, 0, 0));  // 4 cm/s over 0.1 s
+  const SE3 T_W_Lmoving = T_W_Lrest * SE3(Mat3::Identity(), Vec3(-0.006, 0, 0));  // 6 cm/s
+  EXPECT_TRUE(is_new_key_frame(T_W_Lkey, T_W_Lcreep, T_W_Lrest, 0.1, policy));
+  EXPECT_FALSE(is_new_key_frame(T_W_Lkey, T_W_Lmoving, T_W_Lrest, 0.1, policy));
+  // At rest where the last key frame was taken (at rest): no new one, however long it stays.
+  EXPECT_FALSE(is_new_key_frame(T_W_Lrest, T_W_Lrest, T_W_Lrest, 0.1, policy));
+  EXPECT_FALSE(is_new_key_frame(T_W_Lkey, T_W_Lkey, T_W_Lkey * SE3(Mat3::Identity(), Vec3(0.09, 0, 0)), 0.1, policy));
+  policy.stop_min_translation_m = 0.0;  // off
+  EXPECT_FALSE(is_new_key_frame(T_W_Lkey, T_W_Lcreep, T_W_Lrest, 0.1, policy));
 }
 
 }  // namespace

@@ -23,6 +23,7 @@ LoopCandidateRecord record(TimeNs u_ns, TimeNs v_ns, const std::string& rejected
   r.descriptor_matches = 140;
   r.pnp_inliers = 88;
   r.icp_rms_m = 0.03125;
+  r.icp_matched_fraction = 0.625;
   r.icp_inlier_fraction = 0.875;
   r.icp_min_eigenvalue_per_match = 0.25;
   r.epnp_icp_translation_m = 0.0625;
@@ -64,6 +65,10 @@ TEST(LoopsCsv, CandidatesNameTheRejectingStage) {
   EXPECT_NE(text.find(",accepted\n"), std::string::npos) << text;
   EXPECT_NE(text.find(",icp_degenerate\n"), std::string::npos) << text;
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 3);
+  // 14 numbers and the stage per row, the matched fraction (the fitness gate's first test) before the stage.
+  const std::string first_row = text.substr(text.find('\n') + 1, text.find(",accepted\n") - text.find('\n') - 1);
+  EXPECT_EQ(std::count(first_row.begin(), first_row.end(), ','), 13) << first_row;
+  EXPECT_NE(text.find(",0.625,accepted\n"), std::string::npos) << text;
 }
 
 TEST(LoopsCsv, BadLongFormRowsNameFileAndLine) {
