@@ -118,6 +118,7 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
     if (lidar_only_refine) r = reregister_lidar_only(raw, end_t_ns, r.T_W_L, features);
     out.T_W_L = r.T_W_L;
     out.degenerate = r.degeneracy.degenerate();
+    out.degenerate_directions = r.degeneracy.degenerate_directions;
     out.information_eigenvalues = r.degeneracy.eigenvalues;
     out.rms_residual_m = r.rms_residual_m;
     out.matched_fraction = r.matched_fraction;

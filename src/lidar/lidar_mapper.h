@@ -32,6 +32,7 @@ struct LidarMappingResult {
   TimeNs t_ns = 0;  // the scan end t_{k+1}, the instant of T_W_L
   SE3 T_W_L;
   bool degenerate = false;             // some direction was below the degeneracy threshold
+  std::vector<Vec6> degenerate_directions;  // those directions, unit [rho; phi] in L (the prior's motion kept)
   Vec6 information_eigenvalues = Vec6::Zero();  // of J^T J at the solution, ascending
   double rms_residual_m = 0.0;         // registration fit (RegistrationResult); 0 for the first sweep
   double matched_fraction = 0.0;

@@ -6,7 +6,6 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "loop/odometry_chain.h"
 
 namespace vilslam::loop {
 namespace {
@@ -24,8 +23,9 @@ std::size_t anchor_slot(const std::vector<std::size_t>& anchors, std::size_t ind
 GlobalPoseGraph::GlobalPoseGraph(const GlobalPoseGraphConfig& config)
     : config_(config),
       odometry_covariance_(information_from_sigmas(config.odometry_sigma_m, config.odometry_sigma_rad).inverse()) {
-  if (config.anchor_spacing == 0 || config.max_anchors < 2) {
-    throw std::invalid_argument("global pose graph: anchor_spacing must be >= 1 and max_anchors >= 2");
+  if (config.anchor_spacing == 0 || config.max_anchors < 2 || !(config.degenerate_sigma >= 0.0)) {
+    throw std::invalid_argument(
+        "global pose graph: anchor_spacing must be >= 1, max_anchors >= 2 and degenerate_sigma >= 0");
   }
 }
 
@@ -33,13 +33,19 @@ std::size_t GlobalPoseGraph::add_first_pose(TimeNs t_ns, const SE3& T_W_L) {
   if (!poses_.empty()) throw std::logic_error("global pose graph: the first pose is already added");
   poses_.push_back({t_ns, T_W_L});
   odometry_.push_back(SE3());
+  step_covariances_.push_back(odometry_covariance_);
   return 0;
 }
 
-std::size_t GlobalPoseGraph::add_odometry(TimeNs t_ns, const SE3& T_prev_cur) {
+std::size_t GlobalPoseGraph::add_odometry(TimeNs t_ns, const SE3& T_prev_cur,
+                                          const std::vector<Vec6>& degenerate_directions) {
   if (poses_.empty()) throw std::logic_error("global pose graph: add_odometry before add_first_pose");
   poses_.push_back({t_ns, poses_.back().T_W_B * T_prev_cur});
   odometry_.push_back(T_prev_cur);
+  Mat6 covariance = odometry_covariance_;
+  const double variance = config_.degenerate_sigma * config_.degenerate_sigma;
+  for (const Vec6& v : degenerate_directions) covariance += variance * v.normalized() * v.normalized().transpose();
+  step_covariances_.push_back(covariance);
   return poses_.size() - 1;
 }
 
@@ -99,7 +105,7 @@ CorrectionSummary GlobalPoseGraph::optimize() {
   PoseGraph reduced;
   for (std::size_t a : anchors) reduced.add_pose(poses_[a].t_ns, poses_[a].T_W_B);
   for (std::size_t k = 0; k + 1 < anchors.size(); ++k) {
-    const ComposedChain chain = compose_chain(odometry_, anchors[k], anchors[k + 1], odometry_covariance_);
+    const ComposedChain chain = compose_chain(odometry_, step_covariances_, anchors[k], anchors[k + 1]);
     const Mat6 information = chain.covariance.inverse();
     reduced.add_constraint({k, k + 1, chain.T_a_b, 0.5 * (information + information.transpose()),
                             ConstraintKind::kOdometry});
@@ -117,7 +123,7 @@ CorrectionSummary GlobalPoseGraph::optimize() {
 
   for (std::size_t k = 0; k < anchors.size(); ++k) poses_[anchors[k]].T_W_B = reduced.poses()[k].T_W_B;
   for (std::size_t k = 0; k + 1 < anchors.size(); ++k) {
-    correct_chain_interior(odometry_, anchors[k], anchors[k + 1], odometry_covariance_, poses_);
+    correct_chain_interior(odometry_, step_covariances_, anchors[k], anchors[k + 1], poses_);
   }
   first_new_loop_pose_ = kNone;
 

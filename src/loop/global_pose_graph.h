@@ -11,6 +11,7 @@
 
 #include "common/lie.h"
 #include "common/types.h"
+#include "loop/odometry_chain.h"
 #include "loop/pose_graph.h"
 
 namespace vilslam::loop {
@@ -18,6 +19,10 @@ namespace vilslam::loop {
 struct GlobalPoseGraphConfig {
   double odometry_sigma_m = 0.01;     // per LiDAR odometry factor (one sweep)
   double odometry_sigma_rad = 0.001;
+  // Added sigma along each direction the sweep's registration left unconstrained: there the mapper kept the
+  // VIO's motion (a corridor's axis), which drifts more, so a loop's correction goes mostly there. Chosen on
+  // the tuning seed 2 of the loop preset (docs/pose_graph.md); 0 = every sweep alike.
+  double degenerate_sigma = 0.1;
   RobustLoss loop_loss = RobustLoss::kHuber;
   // Whitened units. 1 bounds a wrong loop's pull best; 3.5 converges in fewer iterations but lets a wrong
   // loop pull 4x harder (docs/pose_graph.md, "Bounded correction").
@@ -47,7 +52,9 @@ class GlobalPoseGraph {
   // pose; the new pose's estimate is the previous pose's current estimate composed with it. Returns its index.
   // std::logic_error on add_first_pose twice or add_odometry before it.
   std::size_t add_first_pose(TimeNs t_ns, const SE3& T_W_L);
-  std::size_t add_odometry(TimeNs t_ns, const SE3& T_prev_cur);
+  // degenerate_directions: unit [rho; phi] directions in the current frame that the sweep's registration did
+  // not constrain (lidar::LidarMappingResult); each adds config.degenerate_sigma^2 v v^T to the step's covariance.
+  std::size_t add_odometry(TimeNs t_ns, const SE3& T_prev_cur, const std::vector<Vec6>& degenerate_directions = {});
   // A loop factor measuring T_from_to = (T_W_from)^-1 T_W_to; throws std::invalid_argument on a bad index
   // or an information matrix that is not symmetric positive definite.
   void add_loop(std::size_t from_index, std::size_t to_index, const SE3& T_from_to, const Mat6& information);
@@ -66,9 +73,10 @@ class GlobalPoseGraph {
   std::vector<std::size_t> select_anchors(std::size_t start, std::size_t& spacing) const;
 
   GlobalPoseGraphConfig config_;
-  Mat6 odometry_covariance_;
+  Mat6 odometry_covariance_;  // of a sweep with no degenerate direction
   Trajectory poses_;
   std::vector<SE3> odometry_;  // odometry_[i] = measured T_{i-1,i}; odometry_[0] unused
+  Mat6List step_covariances_;  // of odometry_[i]
   std::vector<RelativePoseConstraint> loops_;
   std::size_t first_new_loop_pose_ = kNone;  // lowest pose touched by a loop added since the last optimize()
 };

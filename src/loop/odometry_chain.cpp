@@ -14,27 +14,28 @@ Mat6 propagate(const Mat6& C_j, const SE3& Z_j, const Mat6& step_covariance) {
 
 }  // namespace
 
-ComposedChain compose_chain(const std::vector<SE3>& steps, std::size_t a, std::size_t b, const Mat6& step_covariance) {
+ComposedChain compose_chain(const std::vector<SE3>& steps, const Mat6List& step_covariances, std::size_t a,
+                            std::size_t b) {
   ComposedChain chain{SE3(), Mat6::Zero()};
   for (std::size_t j = a + 1; j <= b; ++j) {
-    chain.covariance = propagate(chain.covariance, steps[j], step_covariance);
+    chain.covariance = propagate(chain.covariance, steps[j], step_covariances[j]);
     chain.T_a_b = chain.T_a_b * steps[j];
   }
   return chain;
 }
 
-void correct_chain_interior(const std::vector<SE3>& steps, std::size_t a, std::size_t b, const Mat6& step_covariance,
-                            Trajectory& poses) {
+void correct_chain_interior(const std::vector<SE3>& steps, const Mat6List& step_covariances, std::size_t a,
+                            std::size_t b, Trajectory& poses) {
   if (b < a + 2) return;
   // Forward pass: Z_aj and C_j for j = a+1 .. b (index j - a - 1).
   std::vector<SE3> T_a_j;
-  std::vector<Mat6, Eigen::aligned_allocator<Mat6>> C;
+  Mat6List C;
   T_a_j.reserve(b - a);
   C.reserve(b - a);
   SE3 T = SE3();
   Mat6 C_j = Mat6::Zero();
   for (std::size_t j = a + 1; j <= b; ++j) {
-    C_j = propagate(C_j, steps[j], step_covariance);
+    C_j = propagate(C_j, steps[j], step_covariances[j]);
     T = T * steps[j];
     T_a_j.push_back(T);
     C.push_back(C_j);

@@ -111,7 +111,8 @@ void LoopClosureModule::scan_mapped(const lidar::LidarMappingResult& mapped, con
   // lidar.tum: the mapper's motion composed, continuous across the corrections.
   out_.lidar_odometry.push_back({mapped.t_ns, corrected_ ? T_odometry_mapper_ * mapped.T_W_L : mapped.T_W_L});
   const std::size_t index = last_mapper_T_W_L_
-                                ? graph_.add_odometry(mapped.t_ns, last_mapper_T_W_L_->inverse() * mapped.T_W_L)
+                                ? graph_.add_odometry(mapped.t_ns, last_mapper_T_W_L_->inverse() * mapped.T_W_L,
+                                                      mapped.degenerate_directions)
                                 : graph_.add_first_pose(mapped.t_ns, mapped.T_W_L);
   last_mapper_T_W_L_ = mapped.T_W_L;
   out_.lidar_global.push_back({mapped.t_ns, mapped.T_W_L});  // as published now

@@ -283,6 +283,32 @@ TEST(GlobalPoseGraph, CorrectionMovesOnlyThePosesAfterTheLastCut) {
   EXPECT_LT(d.max_m, 0.1e-3);
 }
 
+// A straight route of 40 steps of 0.5 m along x whose odometry is 1 cm short in every step; steps 21..40 were
+// registered with their x axis degenerate (a corridor). A loop measuring the true end-to-end motion then
+// lengthens the degenerate half: its steps take the misclosure in proportion to their variance along x.
+TEST(GlobalPoseGraph, DegenerateStepsTakeTheCorrectionAlongTheirDirection) {
+  for (const bool with_directions : {false, true}) {
+    loop::GlobalPoseGraphConfig config;
+    config.anchor_spacing = 4;
+    loop::GlobalPoseGraph graph(config);
+    graph.add_first_pose(0, SE3());
+    const Vec6 along_x = (Vec6() << 1, 0, 0, 0, 0, 0).finished();
+    for (int i = 1; i <= 40; ++i) {
+      const bool degenerate = with_directions && i > 20;
+      graph.add_odometry(i * 100'000'000LL, SE3(Quat::Identity(), Vec3(0.49, 0, 0)),
+                         degenerate ? std::vector<Vec6>{along_x} : std::vector<Vec6>{});
+    }
+    graph.add_loop(0, 40, SE3(Quat::Identity(), Vec3(20.0, 0, 0)), loop::information_from_sigmas(1e-4, 1e-5));
+    graph.optimize();
+    const double first_half_m = graph.pose(20).translation().x() - 20 * 0.49;
+    const double total_m = graph.pose(40).translation().x() - 40 * 0.49;
+    EXPECT_NEAR(total_m, 0.4, 1e-3);
+    // Variances per step: 0.01^2 each without directions (half each), 0.01^2 vs 0.01^2 + 0.1^2 with.
+    const double expected_share = with_directions ? 1.0 / (1.0 + 101.0) : 0.5;
+    EXPECT_NEAR(first_half_m / total_m, expected_share, 0.01) << (with_directions ? "degenerate" : "uniform");
+  }
+}
+
 // The composed covariance is the first-order propagation: sum_i J_i Sigma J_i^T with J_i the derivative of the
 // chain's error Log(Z_ab^-1 prod_j Z_j Exp(eps_j)) by eps_i, here by central differences.
 TEST(OdometryChain, CovarianceMatchesNumericJacobians) {
@@ -290,7 +316,7 @@ TEST(OdometryChain, CovarianceMatchesNumericJacobians) {
   const std::size_t a = 5;
   const std::size_t b = 35;
   const Mat6 sigma = loop::information_from_sigmas(0.01, 0.002).inverse();
-  const loop::ComposedChain chain = loop::compose_chain(r.odometry, a, b, sigma);
+  const loop::ComposedChain chain = loop::compose_chain(r.odometry, loop::Mat6List(r.odometry.size(), sigma), a, b);
   Mat6 numeric = Mat6::Zero();
   constexpr double kH = 1e-6;
   for (std::size_t i = a + 1; i <= b; ++i) {
@@ -330,13 +356,14 @@ TEST(OdometryChain, InteriorFollowsTheEnds) {
   const Mat6 sigma = loop::information_from_sigmas(0.01, 1e-6).inverse();
   Trajectory consistent = poses;
   for (std::size_t j = 1; j < 10; ++j) consistent[j].T_W_B = SE3(Quat::Identity(), Vec3(7, 7, 7));
-  loop::correct_chain_interior(steps, 0, 10, sigma, consistent);
+  const loop::Mat6List covariances(steps.size(), sigma);
+  loop::correct_chain_interior(steps, covariances, 0, 10, consistent);
   for (std::size_t j = 0; j < poses.size(); ++j) {
     EXPECT_LT((consistent[j].T_W_B.translation() - poses[j].T_W_B.translation()).norm(), 1e-12) << j;
   }
   Trajectory moved = poses;
   moved[10].T_W_B.translation() += Vec3(0, 1.0, 0);
-  loop::correct_chain_interior(steps, 0, 10, sigma, moved);
+  loop::correct_chain_interior(steps, covariances, 0, 10, moved);
   for (std::size_t j = 1; j < 10; ++j) {
     const Vec3 expected = poses[j].T_W_B.translation() + Vec3(0, 0.1 * static_cast<double>(j), 0);
     EXPECT_LT((moved[j].T_W_B.translation() - expected).norm(), 1e-6) << j;
