@@ -8,6 +8,7 @@
 #include "common/error.h"
 #include "frontend/outlier_rejection.h"
 #include "lidar/registration.h"
+#include "loop/constraint_fusion.h"
 #include "loop/loop_constraint.h"
 
 namespace vilslam::loop {
@@ -129,7 +130,7 @@ LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, dou
   // Refinement by ICP of the sparse LiDAR features, initialized at the visual constraint.
   const lidar::FeatureMap map = candidate_map(key_frames_, u.id, config_.submap_half_width, lidar_.map, T_W_L_of_pose);
   const lidar::RegistrationResult icp = lidar::register_scan(v.features_L, map, r.T_Lu_Lv_epnp, lidar_.registration);
-  r.T_Lu_Lv = icp.T_W_L;
+  r.T_Lu_Lv_icp = r.T_Lu_Lv = icp.T_W_L;
   r.icp_rms_m = icp.rms_residual_m;
   r.icp_matched_fraction = icp.matched_fraction;
   r.icp_inlier_fraction = icp.inlier_fraction;
@@ -139,7 +140,7 @@ LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, dou
     const double per_match = icp_matches > 0 ? icp.degeneracy.eigenvalues(i) / icp_matches : 0.0;
     r.icp_degenerate_directions += per_match < config_.icp_min_eigenvalue_per_match;
   }
-  const PoseDifference epnp_icp = pose_difference(r.T_Lu_Lv_epnp, r.T_Lu_Lv);
+  const PoseDifference epnp_icp = pose_difference(r.T_Lu_Lv_epnp, r.T_Lu_Lv_icp);
   r.epnp_icp_translation_m = epnp_icp.translation_m;
   r.epnp_icp_rotation_rad = epnp_icp.rotation_rad;
   // Repeated-structure guard: the loop against the odometry's T_Lu_Lv, allowing drift along the path.
@@ -167,6 +168,16 @@ LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, dou
   if (r.odometry_disagreement_m >
       config_.max_odometry_disagreement_m + config_.max_odometry_disagreement_per_m * r.path_length_m) {
     return rejected(std::move(r), "odometry_disagree");
+  }
+  if (config_.fuse_epnp_icp) {
+    const Mat6 epnp_information = information_in_lidar_frames(
+        pnp_information(pnp.T_C0cur_C0prev, p_C0u, xy_C0v, v.image.focal_px, config_.pnp_reprojection_px,
+                        config_.epnp_sigma_px),
+        pnp.T_C0cur_C0prev, v.T_L_C0);
+    const Mat6& V = icp.degeneracy.eigenvectors;
+    const Mat6 icp_information =
+        V * icp.degeneracy.eigenvalues.asDiagonal() * V.transpose() / (config_.icp_sigma_m * config_.icp_sigma_m);
+    r.T_Lu_Lv = fuse_estimates(r.T_Lu_Lv_epnp, epnp_information, r.T_Lu_Lv_icp, icp_information);
   }
   // Loop factor noise from the config sigmas (docs/loop.md: why not ICP's J^T J), [rho; phi] order.
   r.information = Mat6::Zero();

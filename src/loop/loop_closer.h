@@ -54,6 +54,11 @@ struct LoopClosureConfig {
   // Degenerate directions a loop may have: ICP keeps EPnP's value along them (solution remapping), so along a
   // corridor's axis the constraint is the visual one (paper: vision where LiDAR degenerates). 0: none.
   int icp_max_degenerate_directions = 1;
+  // Beyond the paper: the constraint fuses EPnP and ICP by their information (constraint_fusion.h) instead of
+  // keeping ICP's result; the sigmas scale EPnP's reprojection residuals and ICP's point-to-line/plane ones.
+  bool fuse_epnp_icp = true;
+  double epnp_sigma_px = 1.0;
+  double icp_sigma_m = 0.05;
   // Consistency: EPnP vs ICP, and the loop vs the odometry's prediction of the same relative pose.
   double max_epnp_icp_translation_m = 0.3;
   double max_epnp_icp_rotation_rad = 0.0524;   // 3 degrees
@@ -92,7 +97,8 @@ struct LoopCandidateRecord {
   double path_length_m = 0.0;            // odometry path between the two key frames (key frame poses)
   double odometry_disagreement_m = 0.0;
   SE3 T_Lu_Lv_epnp;                      // EPnP alone, moved into the key scans' frames
-  SE3 T_Lu_Lv;                           // EPnP + ICP: the loop constraint (u = candidate, v = query)
+  SE3 T_Lu_Lv_icp;                       // ICP initialized at EPnP
+  SE3 T_Lu_Lv;                           // the loop constraint (u = candidate, v = query): ICP, or fused with EPnP
   Mat6 information = Mat6::Identity();   // of T_Lu_Lv, [rho; phi]
   std::string rejected_by;
 

@@ -36,6 +36,9 @@ YamlFields loop_closure_yaml_fields(LoopClosureConfig& c) {
       yaml_value("icp_max_rms_m", c.icp_max_rms_m),
       yaml_value("icp_min_eigenvalue_per_match", c.icp_min_eigenvalue_per_match),
       yaml_value("icp_max_degenerate_directions", c.icp_max_degenerate_directions),
+      yaml_value("fuse_epnp_icp", c.fuse_epnp_icp),
+      yaml_value("epnp_sigma_px", c.epnp_sigma_px),
+      yaml_value("icp_sigma_m", c.icp_sigma_m),
       yaml_value("max_epnp_icp_translation_m", c.max_epnp_icp_translation_m),
       yaml_value("max_epnp_icp_rotation_rad", c.max_epnp_icp_rotation_rad),
       yaml_value("max_odometry_disagreement_m", c.max_odometry_disagreement_m),
@@ -72,6 +75,7 @@ void validate_loop_closure_config(const LoopClosureConfig& c, const std::string&
               c.icp_min_inlier_fraction <= 1,
           "icp_min_matched_fraction and icp_min_inlier_fraction must be in [0, 1]");
   require(c.icp_max_rms_m > 0, "icp_max_rms_m must be positive");
+  require(c.epnp_sigma_px > 0 && c.icp_sigma_m > 0, "epnp_sigma_px and icp_sigma_m must be positive");
   require(c.icp_map_point_spacing_m > 0 && c.icp_source_leaf_m > 0,
           "icp_map_point_spacing_m and icp_source_leaf_m must be positive");
   require(c.icp_min_plane_spread_ratio >= 0 && c.icp_min_plane_spread_ratio <= 1,
