@@ -47,7 +47,7 @@ struct LoopClosureConfig {
   // LiDAR mapping's. Measured in docs/loop.md ("ICP accuracy").
   double icp_min_plane_spread_ratio = 0.1;
   double icp_loss_scale_m = 0.05;
-  double icp_min_matched_fraction = 0.4;  // query features that found a line or plane in the map
+  double icp_min_matched_fraction = 0.25;  // query features that found a line or plane in the map
   double icp_min_inlier_fraction = 0.5;   // matched features within the loss scale of their line or plane
   double icp_max_rms_m = 0.3;             // over all matched features (non-overlapping parts included)
   double icp_min_eigenvalue_per_match = 0.01;  // degenerate below this (lidar/degeneracy.h), robust-weighted
