@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/progress.h"
 #include "common/error.h"
 #include "io/cloud_io.h"
 #include "io/trajectory_io.h"
@@ -61,7 +62,10 @@ vilslam::cli::Command reg("map", "Dense map: the dataset's sweeps dewarped and s
     if (T_W_L.empty()) throw InputError(o->poses_path, "no poses");
     o->config.dewarp = !o->no_dewarp;
     set_window(*o, T_W_L.front().t_ns, &o->config);
-    const map::MapBuildResult built = map::build_dense_map(o->dataset, T_W_L, o->config);
+    const map::MapBuildResult built = [&] {
+      Progress progress("map", 1.0);
+      return map::build_dense_map(o->dataset, T_W_L, o->config, [&progress](double f) { progress.update(f); });
+    }();
     PointCloud cloud;
     cloud.points = built.map.points(o->min_hits);
     if (cloud.points.empty()) throw InputError(o->dataset, "no voxel has " + std::to_string(o->min_hits) + " hits");

@@ -20,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/progress.h"
 #include "common/error.h"
 #include "common/json_writer.h"
 #include "eval/map_error.h"
@@ -166,7 +167,8 @@ ModeRun run_mode(const fs::path& data, OfflineRunConfig config, RunMode mode, co
   const auto reader = open_dataset(data.string());
   OfflineRunResult result;
   try {
-    result = run_offline(*reader, config);
+    Progress progress(std::string(run_mode_name(mode)) + " " + data.filename().string(), 1.0);
+    result = run_offline(*reader, config, [&progress](double fraction) { progress.update(fraction); });
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "common/progress.h"
 #include "io/dataset.h"
 #include "pipeline/offline_runner.h"
 #include "pipeline/run_config.h"
@@ -64,7 +65,11 @@ vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and writ
     OfflineRunConfig config = o->config_path.empty() ? OfflineRunConfig{} : load_run_config(o->config_path);
     config.mode = parse_run_mode(o->mode);
     const auto reader = open_dataset(o->dataset, vilslam::cli::dataset_options(*bag_args));
-    const OfflineRunResult result = run_offline(*reader, config);
+    OfflineRunResult result;
+    {
+      Progress progress("run", 1.0);
+      result = run_offline(*reader, config, [&progress](double fraction) { progress.update(fraction); });
+    }
     write_run_outputs(o->out_dir, config, result);
     print_summary(result);
     std::printf("wrote %s\n", o->out_dir.c_str());

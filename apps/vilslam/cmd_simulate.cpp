@@ -1,5 +1,6 @@
 #include <iostream>
 
+#include "common/progress.h"
 #include "common/error.h"
 #include "sim/simulator.h"
 #include "vilslam/command.h"
@@ -59,7 +60,12 @@ vilslam::cli::Command reg("simulate", "Simulate a scenario as a stereo + IMU + L
     request.imu_path = o->imu;
     request.overwrite = o->overwrite;
     request.report = o->report;
-    const SequenceReport report = simulate(config, request);
+    SequenceReport report;
+    {
+      vilslam::Progress progress("simulate " + o->scenario, 1.0);
+      request.progress = [&progress](double fraction) { progress.update(fraction); };
+      report = simulate(config, request);
+    }
     std::cout << "wrote " << o->out << ": " << report.stereo_frames << " stereo frames, " << report.imu_samples
               << " IMU samples, " << report.lidar_scans << " LiDAR scans\n";
     if (o->report) {

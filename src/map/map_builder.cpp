@@ -87,7 +87,8 @@ std::vector<Eigen::Vector3f> sweep_in_world(const LidarScan& raw, const Trajecto
 
 }  // namespace
 
-MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory& T_W_L, const MapBuilderConfig& config) {
+MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory& T_W_L, const MapBuilderConfig& config,
+                               const std::function<void(double)>& progress) {
   check_config(config);
   check_poses(T_W_L);
   MapBuildResult result{DenseMap(config.voxel_size_m), {}};
@@ -97,6 +98,7 @@ MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory
   const TimeNs offset_ns = index.calibration.lidar_time_offset_ns;
   const TimeNs max_gap_ns = s_to_ns(config.max_pose_gap_s);
   for (std::size_t i = 0; i < index.scans.size(); ++i) {
+    if (progress) progress(double(i) / index.scans.size());
     const ScanEntry& entry = index.scans[i];
     // The sweep start is checked before loading; the end is known only from the points.
     const TimeNs start_t_ns = entry.t_ns + offset_ns;

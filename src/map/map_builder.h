@@ -3,6 +3,7 @@
 // to have the dense mapping results". Every sweep the poses cover is dewarped to its end with the poses
 // interpolated over the sweep, moved into W by the pose at its end and averaged into the voxel map.
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <string>
 
@@ -41,6 +42,8 @@ struct MapBuildResult {
 // calibration's lidar_time_offset_ns. Throws InputError naming the dataset when it is missing, has no
 // LiDAR, or no sweep in the window is covered by the poses; std::invalid_argument on a bad config (an empty
 // window too) or bad poses.
-MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory& T_W_L, const MapBuilderConfig& config);
+// progress (optional) receives the share of the dataset's sweeps handled so far.
+MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory& T_W_L, const MapBuilderConfig& config,
+                               const std::function<void(double)>& progress = {});
 
 }  // namespace vilslam::map

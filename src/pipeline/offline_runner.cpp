@@ -104,7 +104,8 @@ std::string run_mode_name(RunMode mode) {
   return {};
 }
 
-OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& config) {
+OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& config,
+                             const std::function<void(double)>& progress) {
   check_mode_fits(reader, config.mode);
   const DatasetSummary& summary = reader.summary();
   OfflineRunResult result;
@@ -143,7 +144,9 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
   reader.rewind();
   // The IMU stream may run on long after the last image (EuRoC slices): stop once every frame is in.
   const auto all_frames_in = [&] { return vio && result.matches_per_frame.size() >= summary.stereo_frames && vio->idle(); };
+  const double span_ns = std::max<double>(1.0, double(summary.end_t_ns - summary.start_t_ns));
   while (auto event = reader.next()) {
+    if (progress) progress(double(event->t_ns - summary.start_t_ns) / span_ns);
     std::visit(
         [&](auto& data) {
           using T = std::decay_t<decltype(data)>;

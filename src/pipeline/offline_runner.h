@@ -4,6 +4,7 @@
 // to the mapper with the VIO's IMU-rate poses as motion prior (vil) or without it (lidar-only).
 // Collects the camera-rate optimized states, the IMU-rate propagated poses, the LiDAR poses and
 // per-module timings.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -56,6 +57,8 @@ struct OfflineRunResult {
 
 // Runs the whole sequence. Throws InputError for bad input, including a mode the dataset cannot serve
 // (the VIO needs cameras and an IMU, which the KITTI layout lacks; the LiDAR modes need scans).
-OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& config);
+// progress (optional) receives the share of the sequence's time span read so far, in [0, 1].
+OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& config,
+                             const std::function<void(double)>& progress = {});
 
 }  // namespace vilslam

@@ -138,7 +138,8 @@ ImuStream make_imu(const SimConfig& config, const SimulateRequest& request, Scen
 
 // Stereo frames at the camera rate over [t0, t1], rendered in parallel batches and written in order.
 void write_frames(const SimConfig& config, const SimulateRequest& request, const Scene& scene, const RigCalibration& calib,
-                  const ImuStream& imu, DatasetWriter& writer, SequenceReport& report) {
+                  const ImuStream& imu, DatasetWriter& writer, SequenceReport& report,
+                  const std::function<void(double)>& progress) {
   const TimeNs period_ns = s_to_ns(1.0 / config.camera.rate_hz);
   const std::size_t count = static_cast<std::size_t>((imu.t1_ns - imu.t0_ns) / period_ns) + 1;
   const TimeNs offset_ns = s_to_ns(config.faults.camera_time_offset_s);
@@ -177,6 +178,7 @@ void write_frames(const SimConfig& config, const SimulateRequest& request, const
       writer.add_stereo(frames[i]);
       corner_sum += corners[i];
     }
+    progress(double(first + n) / count);
   }
   report.stereo_frames = count;
   report.mean_corners_per_frame = count > 0 ? corner_sum / count : 0;
@@ -185,7 +187,8 @@ void write_frames(const SimConfig& config, const SimulateRequest& request, const
 // Sweeps whose whole period lies in [t0, t1], simulated in parallel batches, written in order to the
 // dataset and to the KITTI copy.
 void write_scans(const SimConfig& config, const SimulateRequest& request, const Scene& scene, const RigCalibration& calib,
-                 const ImuStream& imu, DatasetWriter& writer, KittiWriter& kitti, SequenceReport& report) {
+                 const ImuStream& imu, DatasetWriter& writer, KittiWriter& kitti, SequenceReport& report,
+                 const std::function<void(double)>& progress) {
   const TimeNs period_ns = s_to_ns(1.0 / config.lidar.rate_hz);
   const std::size_t count = imu.t1_ns - imu.t0_ns >= period_ns
                                 ? static_cast<std::size_t>((imu.t1_ns - imu.t0_ns - period_ns) / period_ns) + 1
@@ -214,6 +217,7 @@ void write_scans(const SimConfig& config, const SimulateRequest& request, const 
       kitti.add_scan(scans[i], pose);
       ++report.lidar_scans;
     }
+    progress(double(first + n) / count);
   }
   report.mean_lidar_information_ratio = report.lidar_scans > 0 ? ratio_sum / report.lidar_scans : 0;
 }
@@ -274,8 +278,15 @@ SequenceReport simulate(const SimConfig& config, const SimulateRequest& request)
   spdlog::info("simulate {}: {:.1f} m in {:.1f} s, {} IMU samples", report.scenario, report.length_m, report.duration_s,
            report.imu_samples);
 
-  write_frames(config, request, scene, calib, imu, writer, report);
-  write_scans(config, request, scene, calib, imu, writer, kitti, report);
+  // Progress: images, then sweeps, each weighted by its share of the sensor rates.
+  const double image_share = config.camera.rate_hz / (config.camera.rate_hz + config.lidar.rate_hz);
+  const auto stage_progress = [&request](double offset, double share) {
+    return std::function<void(double)>([&request, offset, share](double fraction) {
+      if (request.progress) request.progress(offset + share * fraction);
+    });
+  };
+  write_frames(config, request, scene, calib, imu, writer, report, stage_progress(0.0, image_share));
+  write_scans(config, request, scene, calib, imu, writer, kitti, report, stage_progress(image_share, 1.0 - image_share));
   kitti.finish();
   write_tum_copy(imu.groundtruth, tum_partial);
   const double spacing_m = request.preview ? std::max(config.model_spacing_m, 0.2) : config.model_spacing_m;

@@ -2,6 +2,7 @@
 // The simulator: a world, a trajectory through it and the rig's sensors, written as a dataset in the
 // project's folder format (with ground truth, the reference model and a KITTI copy of the scans).
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "sim/sim_config.h"
@@ -21,6 +22,8 @@ struct SimulateRequest {
   std::string imu_path;         // use this real IMU stream (EuRoC imu0/data.csv) and its timestamps
   bool overwrite = false;
   bool report = false;          // also count corners and LiDAR degeneracy for the report
+  // Optional: the share of the images and sweeps written so far, in [0, 1] (images first).
+  std::function<void(double)> progress;
 };
 
 // Writes the dataset to request.out_dir (atomically: a partial folder renamed at the end) and returns

@@ -23,6 +23,7 @@ void expect_deterministic(const std::string& mode, const std::string& dataset, c
   for (const char* name : {"_a", "_b"}) {
     const test::CliResult r = test::run_cli("run --mode " + mode + " " + dataset + " --out " + (dir / (mode + name)).string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(r.output.find("ETA"), std::string::npos) << "progress written to a non-terminal:\n" << r.output;
   }
   for (const std::string& file : files) {
     const std::string a = test::read_file_bytes(dir / (mode + "_a") / file);
