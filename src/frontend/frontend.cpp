@@ -70,24 +70,34 @@ FrontendOutput Frontend::process(const StereoFrame& frame) {
 }
 
 std::vector<Frontend::Track> Frontend::track_previous(const ImagePyramid& left, const ImagePyramid& right) {
-  std::vector<cv::Point2f> prev_left_px, prev_right_px, left_px, right_px;
-  for (const Track& t : tracks_) {
-    prev_left_px.push_back(to_cv(t.match.left_px));
-    prev_right_px.push_back(to_cv(t.match.right_px));
-  }
-  std::vector<bool> left_ok, right_ok;
+  std::vector<cv::Point2f> prev_left_px, left_px;
+  prev_left_px.reserve(tracks_.size());
+  for (const Track& t : tracks_) prev_left_px.push_back(to_cv(t.match.left_px));
+  std::vector<bool> left_ok;
   track_klt(prev_left_, left, prev_left_px, config_, &left_px, &left_ok);
+  // A track needs both images: the right image tracks only what the left one kept (LK tracks each point
+  // on its own, so the others would not change).
+  std::vector<std::size_t> left_kept;
+  std::vector<cv::Point2f> prev_right_px, right_px;
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    if (!left_ok[i]) continue;
+    left_kept.push_back(i);
+    prev_right_px.push_back(to_cv(tracks_[i].match.right_px));
+  }
+  std::vector<bool> right_ok;
   track_klt(prev_right_, right, prev_right_px, config_, &right_px, &right_ok);
+  stats_.klt_lost = static_cast<int>(tracks_.size() - left_kept.size());
   std::vector<Track> tracked;
   std::vector<Vec3> p_C0prev;
-  for (std::size_t i = 0; i < tracks_.size(); ++i) {
-    if (!left_ok[i] || !right_ok[i]) {
+  for (std::size_t k = 0; k < left_kept.size(); ++k) {
+    if (!right_ok[k]) {
       ++stats_.klt_lost;
       continue;
     }
+    const std::size_t i = left_kept[k];
     Track t = tracks_[i];
     t.match.left_px = to_eigen(left_px[i]);
-    t.match.right_px = to_eigen(right_px[i]);
+    t.match.right_px = to_eigen(right_px[k]);
     ++t.match.age_frames;
     if (!stereo_check(&t)) {
       ++stats_.stereo_rejected;

@@ -17,7 +17,9 @@ bool inside(const cv::Point2f& p, const cv::Size& size) {
 
 constexpr int kRefineMaxLevel = 1;
 
-// Forward LK from prev to cur (from *cur_px when flags has cv::OPTFLOW_USE_INITIAL_FLOW), then backward.
+// Forward LK from prev to cur (from *cur_px when flags has cv::OPTFLOW_USE_INITIAL_FLOW), then backward
+// for the points the forward pass kept inside the image: the others are lost whatever the backward pass
+// gives, and LK tracks each point on its own.
 void track_forward_backward(const ImagePyramid& prev, const ImagePyramid& cur,
                             const std::vector<cv::Point2f>& prev_px, const FrontendConfig& config, int max_level,
                             int flags, std::vector<cv::Point2f>* cur_px, std::vector<bool>* tracked) {
@@ -28,14 +30,23 @@ void track_forward_backward(const ImagePyramid& prev, const ImagePyramid& cur,
   std::vector<float> errors;
   cv::calcOpticalFlowPyrLK(prev, cur, prev_px, *cur_px, forward_ok, errors, window, max_level, klt_criteria(config),
                            flags);
-  std::vector<cv::Point2f> back_px = prev_px;
-  cv::calcOpticalFlowPyrLK(cur, prev, *cur_px, back_px, backward_ok, errors, window, max_level, klt_criteria(config),
-                           cv::OPTFLOW_USE_INITIAL_FLOW);
   const cv::Size size = cur.front().size();
-  const double max_fb_sq = config.klt_max_forward_backward_px * config.klt_max_forward_backward_px;
+  std::vector<std::size_t> forward_kept;
+  std::vector<cv::Point2f> kept_cur_px, back_px;
   for (std::size_t i = 0; i < prev_px.size(); ++i) {
-    const cv::Point2f d = back_px[i] - prev_px[i];
-    (*tracked)[i] = forward_ok[i] && backward_ok[i] && inside((*cur_px)[i], size) && d.dot(d) <= max_fb_sq;
+    if (!forward_ok[i] || !inside((*cur_px)[i], size)) continue;
+    forward_kept.push_back(i);
+    kept_cur_px.push_back((*cur_px)[i]);
+    back_px.push_back(prev_px[i]);
+  }
+  if (forward_kept.empty()) return;
+  cv::calcOpticalFlowPyrLK(cur, prev, kept_cur_px, back_px, backward_ok, errors, window, max_level,
+                           klt_criteria(config), cv::OPTFLOW_USE_INITIAL_FLOW);
+  const double max_fb_sq = config.klt_max_forward_backward_px * config.klt_max_forward_backward_px;
+  for (std::size_t k = 0; k < forward_kept.size(); ++k) {
+    const std::size_t i = forward_kept[k];
+    const cv::Point2f d = back_px[k] - prev_px[i];
+    (*tracked)[i] = backward_ok[k] && d.dot(d) <= max_fb_sq;
   }
 }
 
