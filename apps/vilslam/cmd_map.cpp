@@ -20,7 +20,7 @@ namespace {
 using namespace vilslam;
 
 struct Options {
-  std::string dataset, poses_path, out_path;
+  std::string dataset, poses_path, out_path, motion_path;
   map::MapBuilderConfig config;
   unsigned min_hits = 1;
   bool no_dewarp = false;
@@ -52,6 +52,9 @@ vilslam::cli::Command reg("map", "Dense map: the dataset's sweeps dewarped and s
   app.add_option("--min-range", o->config.min_range_m, "Drop returns closer than this, m")->capture_default_str();
   app.add_option("--max-range", o->config.max_range_m, "Drop returns farther than this, m")->capture_default_str();
   app.add_flag("--no-dewarp", o->no_dewarp, "Do not dewarp sweeps (every point takes the sweep-end pose)");
+  app.add_option("--motion", o->motion_path,
+                 "Continuous LiDAR trajectory (TUM, e.g. lidar.tum) for the motion within each sweep; --poses then "
+                 "only places each sweep's end (use with lidar_global.tum, whose loop corrections jump)");
   app.add_flag("--pcd", o->also_pcd, "Also write the map as binary PCD next to --out");
   app.add_option("--start-s", o->start_s,
                  "Only sweeps ending at or after this many seconds after the first pose of --poses");
@@ -61,6 +64,7 @@ vilslam::cli::Command reg("map", "Dense map: the dataset's sweeps dewarped and s
     const Trajectory T_W_L = read_trajectory(o->poses_path, TrajectoryFormat::kTum);
     if (T_W_L.empty()) throw InputError(o->poses_path, "no poses");
     o->config.dewarp = !o->no_dewarp;
+    if (!o->motion_path.empty()) o->config.motion = read_trajectory(o->motion_path, TrajectoryFormat::kTum);
     set_window(*o, T_W_L.front().t_ns, &o->config);
     const map::MapBuildResult built = [&] {
       Progress progress("map", 1.0);

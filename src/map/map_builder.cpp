@@ -67,9 +67,11 @@ std::string span_text(const Trajectory& T_W_L) {
 // The sweep's points in W that pass the range filter (range of the raw return).
 std::vector<Eigen::Vector3f> sweep_in_world(const LidarScan& raw, const Trajectory& T_W_L,
                                             const MapBuilderConfig& config, std::size_t& out_of_range) {
-  const auto pose_at = [&T_W_L](TimeNs t_ns) { return interpolated(T_W_L, t_ns); };
-  const LidarScan end_frame = config.dewarp ? lidar::dewarp(raw, pose_at) : raw;
-  const SE3 T_W_end = pose_at(raw.end_t_ns());
+  // Dewarping uses only the motion relative to the sweep's end, so any continuous trajectory serves.
+  const Trajectory& motion = config.motion.empty() ? T_W_L : config.motion;
+  const auto motion_at = [&motion](TimeNs t_ns) { return interpolated(motion, t_ns); };
+  const LidarScan end_frame = config.dewarp ? lidar::dewarp(raw, motion_at) : raw;
+  const SE3 T_W_end = interpolated(T_W_L, raw.end_t_ns());
   std::vector<Eigen::Vector3f> points_W;
   points_W.reserve(raw.points.size());
   for (std::size_t i = 0; i < raw.points.size(); ++i) {
@@ -91,6 +93,7 @@ MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory
                                const std::function<void(double)>& progress) {
   check_config(config);
   check_poses(T_W_L);
+  check_poses(config.motion);
   MapBuildResult result{DenseMap(config.voxel_size_m), {}};
   // The index, not the event stream: only the scans are loaded, never the images.
   const DatasetIndex index = index_dataset(dataset_path);
@@ -108,7 +111,8 @@ MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory
     }
     LidarScan scan = load_scan(index, i);
     scan.t_ns += offset_ns;
-    if (scan.points.empty() || !covers(T_W_L, scan.t_ns, scan.end_t_ns(), max_gap_ns)) {
+    if (scan.points.empty() || !covers(T_W_L, scan.t_ns, scan.end_t_ns(), max_gap_ns) ||
+        (!config.motion.empty() && !covers(config.motion, scan.t_ns, scan.end_t_ns(), max_gap_ns))) {
       ++result.stats.sweeps_skipped;
       continue;
     }

@@ -18,6 +18,10 @@ struct MapBuilderConfig {
   double max_range_m = 50.0;    // and farther ones (pose errors grow with range)
   double max_pose_gap_s = 0.25; // a sweep needs poses no farther apart than this over its whole span
   bool dewarp = true;           // false: every point takes the sweep-end pose (for comparison)
+  // Optional continuous trajectory (e.g. the odometry lidar.tum) for the motion within each sweep; the poses
+  // then only place each sweep's end. Poses published with loop corrections (lidar_global.tum) jump where a
+  // correction arrived, and dewarping across that jump would smear the sweep over it.
+  Trajectory motion;
   // Time window: only sweeps whose end (IMU clock, the time of their pose in lidar.tum) lies in
   // [window_start_ns, window_end_ns); e.g. the sweeps after a revisit, to compare their map with the rest.
   TimeNs window_start_ns = std::numeric_limits<TimeNs>::min();

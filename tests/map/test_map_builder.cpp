@@ -90,25 +90,60 @@ TEST_F(MapBuilderHighbay, DewarpingMattersWhileMoving) {
   EXPECT_GT(raw_m, 1.3 * dewarped_m);
 }
 
-TEST_F(MapBuilderHighbay, SweepEndPosesAloneAreInterpolated) {
-  // Keep only the poses nearest each sweep end, as `vilslam run` writes lidar.tum.
-  const auto reader = open_dataset(dataset_);
+// Only the poses nearest each sweep end, as `vilslam run` writes lidar.tum.
+Trajectory sweep_end_poses(const std::string& dataset, const Trajectory& T_W_L) {
+  const auto reader = open_dataset(dataset);
   Trajectory ends;
   while (const auto event = reader->next()) {
     if (const auto* scan = std::get_if<LidarScan>(&event->data)) {
       const TimeNs end = scan->end_t_ns() + reader->calibration().lidar_time_offset_ns;
-      const auto it = std::min_element(T_W_L_.begin(), T_W_L_.end(), [end](const TimedPose& a, const TimedPose& b) {
+      const auto it = std::min_element(T_W_L.begin(), T_W_L.end(), [end](const TimedPose& a, const TimedPose& b) {
         return std::llabs(a.t_ns - end) < std::llabs(b.t_ns - end);
       });
       ends.push_back({end, it->T_W_B});
     }
   }
+  return ends;
+}
+
+TEST_F(MapBuilderHighbay, SweepEndPosesAloneAreInterpolated) {
+  const Trajectory ends = sweep_end_poses(dataset_, T_W_L_);
   ASSERT_GT(ends.size(), 3u);
   const MapBuildResult r = build_dense_map(dataset_, ends, MapBuilderConfig{});
   EXPECT_EQ(r.stats.sweeps_skipped, 1u);  // the first sweep starts before the first pose
   EXPECT_EQ(r.stats.sweeps_used, ends.size() - 1);
   const sim::World world = sim::World::generate(sim::Scenario::kHighbay, test::kHighbaySeed);
   EXPECT_LT(median_distance_to_world(r.map, world), 0.025);
+}
+
+// Poses that jump by a correction D between two sweep ends (as lidar_global.tum after a loop): dewarping
+// with them smears the sweep after the jump over it; with a continuous trajectory for the motion within the
+// sweep (--motion lidar.tum) that sweep lies on the surfaces, moved by D.
+TEST_F(MapBuilderHighbay, MotionTrajectoryKeepsAJumpOutOfTheSweep) {
+  const Trajectory ends = sweep_end_poses(dataset_, T_W_L_);
+  ASSERT_GT(ends.size(), 8u);
+  const std::size_t k = 5;  // the jump lies between the ends of sweeps k - 1 and k
+  const SE3 D(so3::exp(Vec3(0, 0, 2.0 * M_PI / 180.0)), Vec3(0.5, -0.3, 0.05));
+  Trajectory jumped = ends;
+  for (std::size_t i = k; i < jumped.size(); ++i) jumped[i].T_W_B = D * jumped[i].T_W_B;
+  MapBuilderConfig config;
+  config.window_start_ns = ends[k].t_ns;
+  config.window_end_ns = ends[k].t_ns + 1;  // sweep k only
+  const sim::World world = sim::World::generate(sim::Scenario::kHighbay, test::kHighbaySeed);
+  const auto distance_after_undoing_D = [&](const MapBuilderConfig& c) {
+    DenseMap undone(c.voxel_size_m);
+    std::vector<Eigen::Vector3f> points = build_dense_map(dataset_, jumped, c).map.points();
+    for (Eigen::Vector3f& p : points) p = (D.inverse() * p.cast<double>()).cast<float>();
+    undone.insert(points);
+    return median_distance_to_world(undone, world);
+  };
+  const double smeared_m = distance_after_undoing_D(config);
+  config.motion = ends;
+  const double kept_m = distance_after_undoing_D(config);
+  std::printf("sweep after a 0.58 m / 2 deg jump, median distance to the world: dewarped with the poses %.4f m, "
+              "with the motion trajectory %.4f m\n", smeared_m, kept_m);
+  EXPECT_LT(kept_m, 0.025);
+  EXPECT_GT(smeared_m, 0.05);
 }
 
 // Start and end of every sweep in the IMU clock.
