@@ -31,13 +31,13 @@ class VoxelBlock {
     const auto it = std::lower_bound(locals_.begin(), locals_.end(), local_index);
     const std::ptrdiff_t slot = it - locals_.begin();
     if (it != locals_.end() && *it == local_index) return voxels_[static_cast<std::size_t>(slot)];
-    // Grow by a quarter instead of doubling: at most a fifth of the capacity stays unused.
+    // Grow by a quarter plus 4 slots instead of doubling, so little capacity stays unused.
     if (locals_.size() == locals_.capacity()) {
       const std::size_t capacity = locals_.size() + locals_.size() / 4 + 4;
       locals_.reserve(capacity);
       voxels_.reserve(capacity);
     }
-    locals_.insert(locals_.begin() + slot, static_cast<std::uint16_t>(local_index));  // it is stale after reserve
+    locals_.insert(locals_.begin() + slot, static_cast<std::uint16_t>(local_index));  // slot: reserve may have moved it
     return *voxels_.insert(voxels_.begin() + slot, Voxel{});
   }
 
