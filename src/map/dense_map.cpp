@@ -12,12 +12,40 @@ namespace {
 constexpr int kBits = 21;
 constexpr std::int64_t kBias = std::int64_t{1} << (kBits - 1);
 constexpr std::int64_t kFieldMask = (std::int64_t{1} << kBits) - 1;
+constexpr int kBlockBits = kBits - VoxelBlock::kBitsPerAxis;
+constexpr std::uint64_t kLocalMask = VoxelBlock::kSide - 1;
 
 // Voxel index along one axis biased into [0, 2^21), or -1 when out of range.
 std::int64_t biased_index(float coordinate, double voxel_size_m) {
   const double index = std::floor(static_cast<double>(coordinate) / voxel_size_m) + static_cast<double>(kBias);
   if (!(index >= 0.0 && index <= static_cast<double>(kFieldMask))) return -1;
   return static_cast<std::int64_t>(index);
+}
+
+// Voxel key: the three biased indices as 21-bit fields (x high, z low), so key order is lexicographic
+// (x, y, z) index order; points() sorts by it.
+std::uint64_t voxel_key(std::uint64_t ix, std::uint64_t iy, std::uint64_t iz) {
+  return (ix << (2 * kBits)) | (iy << kBits) | iz;
+}
+
+std::uint64_t block_key(std::uint64_t ix, std::uint64_t iy, std::uint64_t iz) {
+  constexpr int b = VoxelBlock::kBitsPerAxis;
+  return ((ix >> b) << (2 * kBlockBits)) | ((iy >> b) << kBlockBits) | (iz >> b);
+}
+
+unsigned local_index(std::uint64_t ix, std::uint64_t iy, std::uint64_t iz) {
+  return VoxelBlock::local_index(static_cast<unsigned>(ix & kLocalMask), static_cast<unsigned>(iy & kLocalMask),
+                                 static_cast<unsigned>(iz & kLocalMask));
+}
+
+// Key of the voxel at local index `local` of the block with key `block`.
+std::uint64_t voxel_key_in_block(std::uint64_t block, unsigned local) {
+  constexpr int b = VoxelBlock::kBitsPerAxis;
+  constexpr std::uint64_t block_field = (std::uint64_t{1} << kBlockBits) - 1;
+  const std::uint64_t x = ((block >> (2 * kBlockBits)) << b) | (local >> (2 * b));
+  const std::uint64_t y = (((block >> kBlockBits) & block_field) << b) | ((local >> b) & kLocalMask);
+  const std::uint64_t z = ((block & block_field) << b) | (local & kLocalMask);
+  return voxel_key(x, y, z);
 }
 
 }  // namespace
@@ -36,8 +64,9 @@ std::size_t DenseMap::insert(const std::vector<Eigen::Vector3f>& points_W) {
     const std::int64_t iy = biased_index(p.y(), voxel_size_m_);
     const std::int64_t iz = biased_index(p.z(), voxel_size_m_);
     if (ix < 0 || iy < 0 || iz < 0) continue;
-    const auto key = static_cast<std::uint64_t>((ix << (2 * kBits)) | (iy << kBits) | iz);
-    Voxel& v = voxels_[key];
+    const auto x = static_cast<std::uint64_t>(ix), y = static_cast<std::uint64_t>(iy), z = static_cast<std::uint64_t>(iz);
+    VoxelBlock::Voxel& v = blocks_[block_key(x, y, z)].find_or_add(local_index(x, y, z));
+    if (v.count == 0) ++num_voxels_;
     ++v.count;
     v.mean_W += (p - v.mean_W) / static_cast<float>(v.count);  // running mean
     ++added;
@@ -48,19 +77,28 @@ std::size_t DenseMap::insert(const std::vector<Eigen::Vector3f>& points_W) {
 
 std::vector<Eigen::Vector3f> DenseMap::points(std::uint32_t min_hits) const {
   std::vector<std::uint64_t> keys;
-  keys.reserve(voxels_.size());
-  for (const auto& [key, voxel] : voxels_) {
-    if (voxel.count >= min_hits) keys.push_back(key);
+  keys.reserve(num_voxels_);
+  for (const auto& [key, block] : blocks_) {
+    block.for_each([&](unsigned local, const VoxelBlock::Voxel& voxel) {
+      if (voxel.count >= min_hits) keys.push_back(voxel_key_in_block(key, local));
+    });
   }
   std::sort(keys.begin(), keys.end());
+  constexpr std::uint64_t field = static_cast<std::uint64_t>(kFieldMask);
   std::vector<Eigen::Vector3f> out;
   out.reserve(keys.size());
-  for (std::uint64_t key : keys) out.push_back(voxels_.at(key).mean_W);
+  for (std::uint64_t key : keys) {
+    const std::uint64_t x = key >> (2 * kBits), y = (key >> kBits) & field, z = key & field;
+    out.push_back(blocks_.at(block_key(x, y, z)).find(local_index(x, y, z))->mean_W);
+  }
   return out;
 }
 
 std::size_t DenseMap::memory_bytes() const {
-  return voxels_.bucket_count() * sizeof(tsl::detail_robin_hash::bucket_entry<std::pair<std::uint64_t, Voxel>, false>);
+  std::size_t bytes =
+      blocks_.bucket_count() * sizeof(tsl::detail_robin_hash::bucket_entry<std::pair<std::uint64_t, VoxelBlock>, false>);
+  for (const auto& [key, block] : blocks_) bytes += block.heap_bytes();
+  return bytes;
 }
 
 }  // namespace vilslam::map

@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 #include <tsl/robin_map.h>
 
+#include "map/voxel_block.h"
+
 namespace vilslam::map {
 
 class DenseMap {
@@ -21,18 +23,14 @@ class DenseMap {
   // The mean point of every voxel with at least min_hits points, in increasing voxel key order.
   std::vector<Eigen::Vector3f> points(std::uint32_t min_hits = 1) const;
 
-  std::size_t num_voxels() const { return voxels_.size(); }
+  std::size_t num_voxels() const { return num_voxels_; }
   std::uint64_t num_points_inserted() const { return inserted_; }
   double voxel_size_m() const { return voxel_size_m_; }
-  // Bytes held by the hash table (buckets times bucket size), the map's whole footprint.
+  // Bytes held by the map: the block table's buckets (bucket count times bucket size) plus every block's
+  // two arrays (capacity times 2 + 16 bytes). Allocator headers (two per block) are not counted.
   std::size_t memory_bytes() const;
 
  private:
-  struct Voxel {
-    Eigen::Vector3f mean_W = Eigen::Vector3f::Zero();
-    std::uint32_t count = 0;
-  };
-
   // Mixes all key bits into the low ones, which the power-of-two bucket mask keeps (splitmix64 finalizer).
   struct KeyHash {
     std::size_t operator()(std::uint64_t key) const {
@@ -43,9 +41,9 @@ class DenseMap {
   };
 
   double voxel_size_m_;
-  // Key: the three voxel indices biased to unsigned 21-bit fields (x high, z low), so key order is
-  // lexicographic (x, y, z) index order.
-  tsl::robin_map<std::uint64_t, Voxel, KeyHash> voxels_;
+  // Key: the three block indices (voxel index / 16) as 17-bit fields, x high.
+  tsl::robin_map<std::uint64_t, VoxelBlock, KeyHash> blocks_;
+  std::size_t num_voxels_ = 0;
   std::uint64_t inserted_ = 0;
 };
 
