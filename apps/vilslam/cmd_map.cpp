@@ -82,7 +82,7 @@ vilslam::cli::Command reg("map", "Dense map: the dataset's sweeps dewarped and s
                   s.sweeps_outside_window, o->start_s.value_or(-INFINITY), o->end_s.value_or(INFINITY));
     std::printf("\n");
     std::printf("points: %zu inserted, %zu out of range\n", s.points_inserted, s.points_out_of_range);
-    std::printf("voxels: %zu of %.4f m, %zu written (min hits %u), hash table %.1f MB\n", built.map.num_voxels(),
+    std::printf("voxels: %zu of %.4f m, %zu written (min hits %u), map memory %.1f MB\n", built.map.num_voxels(),
                 built.map.voxel_size_m(), cloud.size(), o->min_hits, built.map.memory_bytes() / 1e6);
     return 0;
   };
