@@ -133,6 +133,8 @@ void DatasetWriter::set_reference_model(const PointCloud& model) {
   write_cloud((impl_->partial / "model.ply").string(), model);
 }
 
+std::string DatasetWriter::staging_path() const { return impl_->partial.string(); }
+
 void DatasetWriter::finish() {
   Impl& m = *impl_;
   if (m.finished) return;

@@ -25,6 +25,9 @@ class DatasetWriter {
   void add_lidar(const LidarScan& scan);
   void add_groundtruth(const GroundTruthState& state);
   void set_reference_model(const PointCloud& model);
+  // The folder being written (<root>.partial), moved into place by finish(): callers put side outputs
+  // there so that they appear together with the dataset or not at all.
+  std::string staging_path() const;
   // Writes the indexes and calibration files and moves the folder into place.
   void finish();
 

@@ -222,21 +222,6 @@ void write_scans(const SimConfig& config, const SimulateRequest& request, const 
   report.mean_lidar_information_ratio = report.lidar_scans > 0 ? ratio_sum / report.lidar_scans : 0;
 }
 
-void remove_if_exists(const fs::path& p) {
-  std::error_code ec;
-  fs::remove_all(p, ec);
-}
-
-// Removes the temporary side outputs unless the run completed (no half-written leftovers on errors).
-struct PartialCleanup {
-  std::vector<fs::path> paths;
-  bool completed = false;
-  ~PartialCleanup() {
-    if (!completed)
-      for (const fs::path& p : paths) remove_if_exists(p);
-  }
-};
-
 // A TUM copy of the ground truth for trajectory tools, written next to the temporary KITTI folder.
 void write_tum_copy(const std::vector<GroundTruthState>& states, const fs::path& path) {
   Trajectory poses;
@@ -264,12 +249,11 @@ SequenceReport simulate(const SimConfig& config, const SimulateRequest& request)
   report.duration_s = ns_to_s(imu.t1_ns - imu.t0_ns);
   report.length_m = path_length_m(imu.groundtruth);
 
+  // The KITTI copy and the TUM ground truth are written inside the dataset's staging folder, so the
+  // writer's one rename publishes them with it (a killed run leaves no dataset without them).
   DatasetWriter writer(request.out_dir, calib, request.overwrite);
-  const fs::path kitti_partial = fs::path(request.out_dir).concat(".kitti.partial");
-  const fs::path tum_partial = fs::path(request.out_dir).concat(".groundtruth.tum.partial");
-  PartialCleanup cleanup{{kitti_partial, tum_partial}};
-  remove_if_exists(kitti_partial);
-  KittiWriter kitti(kitti_partial.string(), calib);
+  const fs::path staging = writer.staging_path();
+  KittiWriter kitti((staging / "kitti").string(), calib);
 
   for (const ImuSample& s : imu.samples) writer.add_imu(s);
   for (const GroundTruthState& g : imu.groundtruth) writer.add_groundtruth(g);
@@ -288,18 +272,10 @@ SequenceReport simulate(const SimConfig& config, const SimulateRequest& request)
   write_frames(config, request, scene, calib, imu, writer, report, stage_progress(0.0, image_share));
   write_scans(config, request, scene, calib, imu, writer, kitti, report, stage_progress(image_share, 1.0 - image_share));
   kitti.finish();
-  write_tum_copy(imu.groundtruth, tum_partial);
+  write_tum_copy(imu.groundtruth, staging / "groundtruth.tum");
   const double spacing_m = request.preview ? std::max(config.model_spacing_m, 0.2) : config.model_spacing_m;
   writer.set_reference_model(scene.world.sample_surfaces(spacing_m));
   writer.finish();
-
-  for (const auto& [from, to] : {std::pair{kitti_partial, fs::path(request.out_dir) / "kitti"},
-                                  std::pair{tum_partial, fs::path(request.out_dir) / "groundtruth.tum"}}) {
-    std::error_code ec;
-    fs::rename(from, to, ec);
-    if (ec) throw InputError(to.string(), "cannot move into place: " + ec.message());
-  }
-  cleanup.completed = true;
   return report;
 }
 
