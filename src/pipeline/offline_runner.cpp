@@ -6,12 +6,14 @@
 #include <optional>
 #include <stdexcept>
 #include <type_traits>
+#include <variant>
 
 #include <spdlog/spdlog.h>
 
 #include "common/error.h"
 #include "frontend/frontend.h"
 #include "pipeline/lidar_feeder.h"
+#include "pipeline/stage.h"
 #include "pipeline/time_offset_pass.h"
 
 namespace vilslam {
@@ -21,13 +23,72 @@ double elapsed_ms(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Feeds the VIO and times it. Frames wait (as frontend output) until the IMU stream has passed their
-// time on the IMU clock, so a non-zero camera time offset never hands the VIO a frame too early.
-class VioFeeder {
+// What the LiDAR side receives, in the dataset's order: stereo pairs (key images, on the IMU clock), sweeps,
+// and after each IMU sample the IMU-rate poses the VIO published for it (none before initialization).
+struct PosesAdvanced {
+  Trajectory imu_poses;   // T_W_I
+  Trajectory imu_motion;  // T_O_I at the same samples
+};
+using LidarMessage = std::variant<PosesAdvanced, StereoFrame, LidarScan>;
+
+// A stereo pair on the IMU clock with its frontend output.
+struct TrackedFrame {
+  StereoFrame frame;
+  FrontendOutput out;
+};
+using VioMessage = std::variant<ImuSample, TrackedFrame, LidarScan>;
+using FrontendMessage = std::variant<ImuSample, StereoFrame, LidarScan>;
+
+// LiDAR mapping and loop closure (paper: the LiDAR mapping and loop closure threads). Keeps its own copy of
+// the VIO's IMU-rate poses, grown exactly as the VIO published them, so it never reads the VIO's memory.
+class LidarSide {
  public:
-  VioFeeder(const RigCalibration& calib, const OfflineRunConfig& config, OfflineRunResult* result)
-      : frontend_(calib, config.frontend), vio_(calib, config.vio), result_(result),
-        cam_offset_ns_(calib.cam_time_offset_ns) {
+  LidarSide(const RigCalibration& calib, const OfflineRunConfig& config, bool with_vio, OfflineRunResult* result)
+      : result_(result) {
+    if (config.mode == RunMode::kVil) {
+      std::shared_ptr<const Vocabulary> vocabulary;
+      if (config.loop.enabled) vocabulary = std::make_shared<const Vocabulary>(Vocabulary::load(
+            config.vocabulary == "default" ? default_vocabulary_path() : config.vocabulary));
+      loop_.emplace(config.loop, config.graph, vocabulary, calib, config.frontend, config.lidar.lidar, &imu_motion_);
+    }
+    lidar_.emplace(config.lidar, calib, with_vio ? &imu_poses_ : nullptr, with_vio ? &imu_motion_ : nullptr,
+                   &result->lidar, loop_ ? &*loop_ : nullptr);
+  }
+
+  void handle(LidarMessage&& message) {
+    if (auto* poses = std::get_if<PosesAdvanced>(&message)) {
+      imu_poses_.insert(imu_poses_.end(), poses->imu_poses.begin(), poses->imu_poses.end());
+      imu_motion_.insert(imu_motion_.end(), poses->imu_motion.begin(), poses->imu_motion.end());
+      lidar_->poses_advanced();
+    } else if (auto* frame = std::get_if<StereoFrame>(&message)) {
+      if (loop_) loop_->stereo(*frame);
+    } else {
+      lidar_->scan(std::move(std::get<LidarScan>(message)));
+    }
+  }
+
+  void finish() {
+    lidar_->poses_advanced();
+    result_->unmapped_scans = lidar_->unmapped_scans();
+    if (loop_) result_->loop = loop_->finish();
+  }
+
+ private:
+  OfflineRunResult* result_;
+  Trajectory imu_poses_;
+  Trajectory imu_motion_;
+  std::optional<LoopClosureModule> loop_;
+  std::optional<LidarFeeder> lidar_;
+};
+
+// The smoother (paper: the VIO thread). Frames wait (as frontend output) until the IMU stream has passed
+// their time on the IMU clock, so a non-zero camera time offset never hands the VIO a frame too early.
+// Passes stereo pairs, sweeps and its new IMU-rate poses on to the LiDAR side, if there is one.
+class SmootherSide {
+ public:
+  SmootherSide(const RigCalibration& calib, const OfflineRunConfig& config, OfflineRunResult* result,
+               Stage<LidarMessage>* lidar)
+      : vio_(calib, config.vio), result_(result), lidar_(lidar) {
     vio_.on_state([this](const VioStateOutput& s) { result_->camera_states.push_back({s.state.t_ns, s.state.T_W_I()}); });
     vio_.on_imu_pose([this](const VioImuOutput& p) {
       result_->imu_poses.push_back({p.t_ns, p.T_W_I});
@@ -35,23 +96,24 @@ class VioFeeder {
     });
   }
 
-  void imu(const ImuSample& sample) {
-    release_frames_before(sample.t_ns);
-    vio_.add_imu(sample);
-    ++result_->imu_samples;
+  void handle(VioMessage&& message) {
+    if (auto* sample = std::get_if<ImuSample>(&message)) {
+      release_frames_before(sample->t_ns);
+      vio_.add_imu(*sample);
+      ++result_->imu_samples;
+      if (lidar_) lidar_->push(new_poses());
+    } else if (auto* tracked = std::get_if<TrackedFrame>(&message)) {
+      if (lidar_) lidar_->push(std::move(tracked->frame));
+      pending_.push_back(std::move(tracked->out));
+    } else if (lidar_) {
+      lidar_->push(std::move(std::get<LidarScan>(message)));
+    }
   }
 
-  void stereo(StereoFrame frame) {
-    frame.t_ns += cam_offset_ns_;
-    const auto start = std::chrono::steady_clock::now();
-    FrontendOutput out = frontend_.process(frame);
-    result_->frontend_ms.push_back(elapsed_ms(start));
-    result_->matches_per_frame.push_back(static_cast<int>(out.matches.size()));
-    pending_.push_back(std::move(out));
+  void finish() {
+    release_frames_before(std::numeric_limits<TimeNs>::max());
+    if (lidar_) lidar_->push(new_poses());
   }
-
-  bool idle() const { return pending_.empty(); }
-  void finish() { release_frames_before(std::numeric_limits<TimeNs>::max()); }
 
  private:
   void release_frames_before(TimeNs t_ns) {
@@ -63,11 +125,49 @@ class VioFeeder {
     }
   }
 
-  Frontend frontend_;
+  PosesAdvanced new_poses() {
+    PosesAdvanced p;
+    p.imu_poses.assign(result_->imu_poses.begin() + sent_, result_->imu_poses.end());
+    p.imu_motion.assign(result_->imu_motion.begin() + sent_, result_->imu_motion.end());
+    sent_ = result_->imu_poses.size();
+    return p;
+  }
+
   Vio vio_;
   OfflineRunResult* result_;
-  TimeNs cam_offset_ns_;
+  Stage<LidarMessage>* lidar_;
   std::deque<FrontendOutput> pending_;
+  std::size_t sent_ = 0;
+};
+
+// The visual frontend (paper: the frontend thread): stereo pairs in, tracked features out; everything else
+// passes through in order.
+class FrontendSide {
+ public:
+  FrontendSide(const RigCalibration& calib, const OfflineRunConfig& config, OfflineRunResult* result,
+               Stage<VioMessage>* vio)
+      : frontend_(calib, config.frontend), cam_offset_ns_(calib.cam_time_offset_ns), result_(result), vio_(vio) {}
+
+  void handle(FrontendMessage&& message) {
+    if (auto* frame = std::get_if<StereoFrame>(&message)) {
+      frame->t_ns += cam_offset_ns_;
+      const auto start = std::chrono::steady_clock::now();
+      FrontendOutput out = frontend_.process(*frame);
+      result_->frontend_ms.push_back(elapsed_ms(start));
+      result_->matches_per_frame.push_back(static_cast<int>(out.matches.size()));
+      vio_->push(TrackedFrame{std::move(*frame), std::move(out)});
+    } else if (auto* sample = std::get_if<ImuSample>(&message)) {
+      vio_->push(*sample);
+    } else {
+      vio_->push(std::move(std::get<LidarScan>(message)));
+    }
+  }
+
+ private:
+  Frontend frontend_;
+  TimeNs cam_offset_ns_;
+  OfflineRunResult* result_;
+  Stage<VioMessage>* vio_;
 };
 
 void check_mode_fits(const DatasetReader& reader, RunMode mode) {
@@ -124,57 +224,66 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
                    config.time_offset.window_s, calib.cam_time_offset_ns);
     }
   }
-  std::optional<VioFeeder> vio;
-  if (config.mode != RunMode::kLidarOnly) vio.emplace(calib, config, &result);
-  std::optional<LoopClosureModule> loop;
-  if (config.mode == RunMode::kVil) {
-    std::shared_ptr<const Vocabulary> vocabulary;
-    if (config.loop.enabled) vocabulary = std::make_shared<const Vocabulary>(Vocabulary::load(
-          config.vocabulary == "default" ? default_vocabulary_path() : config.vocabulary));
-    loop.emplace(config.loop, config.graph, vocabulary, calib, config.frontend, config.lidar.lidar,
-                 &result.imu_motion);
-  }
-  std::optional<LidarFeeder> lidar;
+  // The modules, downstream first so that they outlive the upstream ones that feed them.
+  const bool with_vio = config.mode != RunMode::kLidarOnly;
+  std::optional<LidarSide> lidar_side;
+  std::optional<Stage<LidarMessage>> lidar;
   if (config.mode != RunMode::kVio) {
-    lidar.emplace(config.lidar, calib, vio ? &result.imu_poses : nullptr,
-                  vio ? &result.imu_motion : nullptr, &result.lidar,
-                  loop ? &*loop : nullptr);
+    lidar_side.emplace(calib, config, with_vio, &result);
+    lidar.emplace([&](LidarMessage&& m) { lidar_side->handle(std::move(m)); }, config.threads);
   }
-  const TimeNs cam_offset_ns = calib.cam_time_offset_ns;
+  std::optional<SmootherSide> smoother_side;
+  std::optional<Stage<VioMessage>> smoother;
+  std::optional<FrontendSide> frontend_side;
+  std::optional<Stage<FrontendMessage>> frontend;
+  if (with_vio) {
+    smoother_side.emplace(calib, config, &result, lidar ? &*lidar : nullptr);
+    smoother.emplace([&](VioMessage&& m) { smoother_side->handle(std::move(m)); }, config.threads);
+    frontend_side.emplace(calib, config, &result, &*smoother);
+    frontend.emplace([&](FrontendMessage&& m) { frontend_side->handle(std::move(m)); }, config.threads);
+  }
+  const auto failed = [&] {
+    return (frontend && frontend->failed()) || (smoother && smoother->failed()) || (lidar && lidar->failed());
+  };
+
   reader.rewind();
-  // The IMU stream may run on long after the last image (EuRoC slices): stop once every frame is in.
-  const auto all_frames_in = [&] { return vio && result.matches_per_frame.size() >= summary.stereo_frames && vio->idle(); };
+  // The IMU stream may run on long after the last image (EuRoC slices): stop at the first IMU sample after
+  // the last frame, which hands that frame to the smoother.
+  std::size_t frames_read = 0;
+  TimeNs last_frame_t_ns = std::numeric_limits<TimeNs>::max();
   const double span_ns = std::max<double>(1.0, double(summary.end_t_ns - summary.start_t_ns));
   while (auto event = reader.next()) {
     if (progress) progress(double(event->t_ns - summary.start_t_ns) / span_ns);
+    bool last_frame_handed_over = false;
     std::visit(
         [&](auto& data) {
           using T = std::decay_t<decltype(data)>;
           if constexpr (std::is_same_v<T, ImuSample>) {
-            if (vio) vio->imu(data);
-            if (vio && lidar) lidar->poses_advanced();
+            last_frame_handed_over = frames_read >= summary.stereo_frames && data.t_ns > last_frame_t_ns;
+            if (frontend) frontend->push(data);
           }
           if constexpr (std::is_same_v<T, StereoFrame>) {
-            if (loop) {
-              StereoFrame on_imu_clock = data;  // shares the images
-              on_imu_clock.t_ns += cam_offset_ns;
-              loop->stereo(on_imu_clock);
-            }
-            if (vio) vio->stereo(std::move(data));
+            last_frame_t_ns = data.t_ns + calib.cam_time_offset_ns;
+            ++frames_read;
+            if (frontend) frontend->push(std::move(data));
           }
           if constexpr (std::is_same_v<T, LidarScan>) {
-            if (lidar) lidar->scan(std::move(data));
+            if (frontend) frontend->push(std::move(data));
+            else if (lidar) lidar->push(std::move(data));
           }
         },
         event->data);
-    if (all_frames_in()) break;
+    if ((with_vio && last_frame_handed_over) || failed()) break;
   }
-  if (vio) vio->finish();
+  if (frontend) frontend->finish();
+  if (smoother) {
+    smoother->finish();
+    smoother_side->finish();
+  }
   if (lidar) {
-    lidar->poses_advanced();
-    result.unmapped_scans = lidar->unmapped_scans();
+    lidar->finish();
+    lidar_side->finish();
   }
-  if (loop) result.loop = loop->finish();
   return result;
 }
 

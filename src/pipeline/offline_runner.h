@@ -2,6 +2,9 @@
 // Deterministic offline mode (paper, system overview): the dataset is read as one time-ordered event
 // stream; IMU samples go to the VIO, stereo pairs through the visual frontend into the VIO, LiDAR sweeps
 // to the mapper with the VIO's IMU-rate poses as motion prior (vil) or without it (lidar-only).
+// The frontend, the smoother and the LiDAR side (mapping and loop closure) form a chain (pipeline/stage.h):
+// each sees the stream in the dataset's order, so running them on threads of their own changes nothing
+// but the time the run takes.
 // Collects the camera-rate optimized states, the IMU-rate propagated poses, the LiDAR poses and
 // per-module timings.
 #include <functional>
@@ -39,6 +42,7 @@ struct OfflineRunConfig {
   loop::GlobalPoseGraphConfig graph;
   std::string vocabulary = "default";   // a vocabulary file, or "default": default_vocabulary_path()
   TimeOffsetConfig time_offset;          // vio and vil: estimate the camera-IMU time offset before the run
+  bool threads = true;  // the frontend, the smoother and the LiDAR side each on a thread (same output as without)
 };
 
 struct OfflineRunResult {

@@ -26,7 +26,8 @@ YamlFields run_yaml_fields(OfflineRunConfig& c) {
   return {yaml_section("frontend", frontend_yaml_fields(c.frontend)), yaml_section("vio", vio_yaml_fields(c.vio)),
           yaml_section("lidar_mapper", lidar::lidar_mapper_yaml_fields(c.lidar)),
           yaml_section("loop_closure", std::move(loop_fields)),
-          yaml_section("time_offset", time_offset_yaml_fields(c.time_offset))};
+          yaml_section("time_offset", time_offset_yaml_fields(c.time_offset)),
+          yaml_section("pipeline", {yaml_value("threads", c.threads)})};
 }
 
 void validate_time_offset_config(const TimeOffsetConfig& c, const std::string& path) {

@@ -1,6 +1,6 @@
 // Loop closure inside `vilslam run --mode vil` on a short closed route (the room preset, 8 m, one lap): the
 // return to the start is detected and every accepted loop is true against ground truth, the outputs are
-// consistent with each other, bit-identical over two runs, and `loop_closure.enabled: false` turns it off.
+// consistent with each other, bit-identical over two runs and with the modules on one thread, and `loop_closure.enabled: false` turns it off.
 // The same lap with its camera stamps delayed shows the camera-IMU time offset estimation.
 #include <gtest/gtest.h>
 
@@ -33,11 +33,15 @@ class LoopClosureRun : public ::testing::Test {
     ASSERT_EQ(sim.exit_code, 0) << sim.output;
     std::ofstream(dir / "short_gap.yaml") << kShortGapConfig;
     std::ofstream(dir / "off.yaml") << kShortGapConfig << "  enabled: false\n";
+    std::ofstream(dir / "one_thread.yaml") << kShortGapConfig << "pipeline:\n  threads: false\n";
     for (const char* run : {"a", "b"}) {
       const test::CliResult r = test::run_cli("run --mode vil " + data_->string() + " --config " +
                                               (dir / "short_gap.yaml").string() + " --out " + (dir / run).string());
       ASSERT_EQ(r.exit_code, 0) << r.output;
     }
+    const test::CliResult serial = test::run_cli("run --mode vil " + data_->string() + " --config " +
+                                                 (dir / "one_thread.yaml").string() + " --out " + (dir / "serial").string());
+    ASSERT_EQ(serial.exit_code, 0) << serial.output;
     const test::CliResult off = test::run_cli("run --mode vil " + data_->string() + " --config " +
                                               (dir / "off.yaml").string() + " --out " + (dir / "off").string());
     ASSERT_EQ(off.exit_code, 0) << off.output;
@@ -132,10 +136,12 @@ TEST_F(LoopClosureRun, OutputsAgree) {
   EXPECT_NE(test::read_file_bytes(*runs_ / "a" / "timings.json").find("\"loops_accepted\""), std::string::npos);
 }
 
-TEST_F(LoopClosureRun, TwoRunsAreBitIdentical) {
+// Two threaded runs, and a run with every module on one thread: the same bytes.
+TEST_F(LoopClosureRun, RunsAreBitIdenticalThreadedOrNot) {
   for (const char* file : {"lidar.tum", "lidar_global.tum", "lidar_final.tum", "loops.csv", "loop_candidates.csv",
-                           "vio_camera.tum", "degeneracy.csv"}) {
+                           "vio_camera.tum", "vio_imu.tum", "degeneracy.csv"}) {
     EXPECT_EQ(test::read_file_bytes(*runs_ / "a" / file), test::read_file_bytes(*runs_ / "b" / file)) << file;
+    EXPECT_EQ(test::read_file_bytes(*runs_ / "a" / file), test::read_file_bytes(*runs_ / "serial" / file)) << file;
   }
 }
 
