@@ -27,6 +27,8 @@ struct Options {
 void print_summary(const OfflineRunResult& r) {
   const TimingSummary fe = summarize_timings(r.frontend_ms);
   const TimingSummary sm = summarize_timings(r.smoother_ms);
+  std::printf("%.1f s of data in %.1f s wall (%.2fx real time)\n", r.data_s, r.run_wall_s,
+              r.run_wall_s > 0 ? r.data_s / r.run_wall_s : 0.0);
   std::printf("frames %zu, IMU samples %zu, camera states %zu, IMU-rate poses %zu\n", r.matches_per_frame.size(),
               r.imu_samples, r.camera_states.size(), r.imu_poses.size());
   std::printf("frontend ms: median %.2f p95 %.2f max %.2f\n", fe.median_ms, fe.p95_ms, fe.max_ms);

@@ -207,6 +207,7 @@ std::string run_mode_name(RunMode mode) {
 OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& config,
                              const std::function<void(double)>& progress) {
   check_mode_fits(reader, config.mode);
+  const auto run_start = std::chrono::steady_clock::now();
   const DatasetSummary& summary = reader.summary();
   OfflineRunResult result;
   RigCalibration calib = reader.calibration();
@@ -252,8 +253,12 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
   std::size_t frames_read = 0;
   TimeNs last_frame_t_ns = std::numeric_limits<TimeNs>::max();
   const double span_ns = std::max<double>(1.0, double(summary.end_t_ns - summary.start_t_ns));
+  std::optional<TimeNs> first_t_ns;
+  TimeNs last_t_ns = 0;
   while (auto event = reader.next()) {
     if (progress) progress(double(event->t_ns - summary.start_t_ns) / span_ns);
+    if (!first_t_ns) first_t_ns = event->t_ns;
+    last_t_ns = event->t_ns;
     bool last_frame_handed_over = false;
     std::visit(
         [&](auto& data) {
@@ -284,6 +289,8 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
     lidar->finish();
     lidar_side->finish();
   }
+  result.data_s = first_t_ns ? ns_to_s(last_t_ns - *first_t_ns) : 0.0;
+  result.run_wall_s = elapsed_ms(run_start) / 1e3;
   return result;
 }
 

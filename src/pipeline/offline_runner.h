@@ -57,6 +57,8 @@ struct OfflineRunResult {
   std::size_t unmapped_scans = 0;  // vil: sweeps no VIO pose covered
   std::optional<LoopClosureOutput> loop;  // vil: odometry, loop-corrected poses, loop candidates
   std::optional<TimeOffsetEstimate> time_offset;  // when estimated (config.time_offset.enabled) and observable
+  double data_s = 0;      // time span of the events read (the sensors' time)
+  double run_wall_s = 0;  // wall time of run_offline (data_s / run_wall_s > 1: faster than real time)
 };
 
 // Runs the whole sequence. Throws InputError for bad input, including a mode the dataset cannot serve

@@ -30,6 +30,8 @@ std::string timings_json(RunMode mode, const OfflineRunResult& r) {
   JsonWriter json;
   json.begin_object();
   json.key("mode").value(run_mode_name(mode));
+  json.key("data_s").value(r.data_s);
+  json.key("run_wall_s").value(r.run_wall_s);
   json.key("stereo_frames").value(static_cast<std::uint64_t>(r.matches_per_frame.size()));
   json.key("imu_samples").value(static_cast<std::uint64_t>(r.imu_samples));
   json.key("camera_states").value(static_cast<std::uint64_t>(r.camera_states.size()));

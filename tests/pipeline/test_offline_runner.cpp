@@ -33,6 +33,12 @@ TEST(OfflineRunner, EurocSliceInitializesAndStaysStill) {
   EXPECT_LE(r.imu_poses.back().t_ns - r.camera_states.back().t_ns, 10'000'000);
   EXPECT_EQ(r.frontend_ms.size(), r.matches_per_frame.size());
   EXPECT_EQ(r.smoother_ms.size(), r.matches_per_frame.size());
+
+  // The time read covers every state and no more than the dataset; the wall time is measured.
+  const DatasetSummary& summary = reader->summary();
+  EXPECT_GE(r.data_s, ns_to_s(r.camera_states.back().t_ns - r.camera_states.front().t_ns));
+  EXPECT_LE(r.data_s, ns_to_s(summary.end_t_ns - summary.start_t_ns));
+  EXPECT_GT(r.run_wall_s, 0.0);
 }
 
 TEST(TimingStats, NearestRankPercentiles) {
