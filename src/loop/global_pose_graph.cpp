@@ -44,7 +44,10 @@ std::size_t GlobalPoseGraph::add_odometry(TimeNs t_ns, const SE3& T_prev_cur,
   odometry_.push_back(T_prev_cur);
   Mat6 covariance = odometry_covariance_;
   const double variance = config_.degenerate_sigma * config_.degenerate_sigma;
-  for (const Vec6& v : degenerate_directions) covariance += variance * v.normalized() * v.normalized().transpose();
+  for (const Vec6& v : degenerate_directions) {
+    const Vec6 unit = v.normalized();
+    covariance += variance * unit * unit.transpose();
+  }
   step_covariances_.push_back(covariance);
   return poses_.size() - 1;
 }
