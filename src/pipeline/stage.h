@@ -85,6 +85,7 @@ class Stage {
       closed_ = true;
       if (!drain) queue_.clear();
       ready_.notify_all();
+      space_.notify_all();
     }
     worker_.join();
   }

@@ -141,6 +141,24 @@ double json_number(const std::string& json, const std::string& key) {
   return at == std::string::npos ? -1 : std::stod(json.substr(at + key.size() + 3));
 }
 
+// A file broken in the middle of the sequence is found while the modules work on their threads: exit 2,
+// the file named, no output folder, and no hang.
+TEST_F(SimulatedHighbay, FileBrokenMidwayStopsTheThreadedRun) {
+  const fs::path dir = test::temp_dir();
+  const fs::path copy = dir / "data";
+  fs::copy(*data_, copy, fs::copy_options::recursive);
+  std::vector<fs::path> images;
+  for (const auto& e : fs::directory_iterator(copy / "mav0" / "cam1" / "data")) images.push_back(e.path());
+  ASSERT_GT(images.size(), 10u);
+  std::sort(images.begin(), images.end());
+  const fs::path broken = images[images.size() / 2];
+  std::ofstream(broken, std::ios::binary | std::ios::trunc) << "not a png";
+  const test::CliResult r = test::run_cli("run --mode vil " + copy.string() + " --out " + (dir / "o").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(broken.filename().string()), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "o"));
+}
+
 TEST_F(SimulatedHighbay, ConfigChangesTheRunAndItsCopyRepeatsIt) {
   const fs::path dir = test::temp_dir();
   const auto run = [&](const std::string& name, const std::string& config) {
