@@ -43,9 +43,10 @@ using FrontendMessage = std::variant<ImuSample, StereoFrame, LidarScan>;
 // the VIO's IMU-rate poses, grown exactly as the VIO published them, so it never reads the VIO's memory.
 class LidarSide {
  public:
-  LidarSide(const RigCalibration& calib, const OfflineRunConfig& config, bool with_vio, OfflineRunResult* result)
+  LidarSide(const RigCalibration& calib, const OfflineRunConfig& config, OfflineRunResult* result)
       : result_(result) {
-    if (config.mode == RunMode::kVil) {
+    const bool with_vio = config.mode == RunMode::kVil;  // the LiDAR side exists only in vil and lidar-only
+    if (with_vio) {
       std::shared_ptr<const Vocabulary> vocabulary;
       if (config.loop.enabled) vocabulary = std::make_shared<const Vocabulary>(Vocabulary::load(
             config.vocabulary == "default" ? default_vocabulary_path() : config.vocabulary));
@@ -230,7 +231,7 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
   std::optional<LidarSide> lidar_side;
   std::optional<Stage<LidarMessage>> lidar;
   if (config.mode != RunMode::kVio) {
-    lidar_side.emplace(calib, config, with_vio, &result);
+    lidar_side.emplace(calib, config, &result);
     lidar.emplace([&](LidarMessage&& m) { lidar_side->handle(std::move(m)); }, config.threads);
   }
   std::optional<SmootherSide> smoother_side;
