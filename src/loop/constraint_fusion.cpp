@@ -38,4 +38,11 @@ SE3 fuse_estimates(const SE3& T_a, const Mat6& info_a, const SE3& T_b, const Mat
   return T_b * SE3::exp(step);
 }
 
+Mat6 information_with_floor(const Mat6& estimate_information, const Mat6& floor_information) {
+  // (A^-1 + F^-1)^-1 = A (A + F)^-1 F, which needs no inverse of a singular A.
+  const Mat6 sum = estimate_information + floor_information;
+  const Mat6 information = estimate_information * sum.ldlt().solve(floor_information);
+  return 0.5 * (information + information.transpose());
+}
+
 }  // namespace vilslam::loop

@@ -22,4 +22,9 @@ Mat6 information_in_lidar_frames(const Mat6& information_C0v_C0u, const SE3& T_C
 // T = T_b Exp((info_a + info_b)^-1 info_a Log(T_b^-1 T_a)).
 SE3 fuse_estimates(const SE3& T_a, const Mat6& info_a, const SE3& T_b, const Mat6& info_b);
 
+// (estimate_information^-1 + floor_information^-1)^-1: the covariances added, so every direction is at most as
+// certain as the floor says and no more certain than the estimate. A direction the estimate does not measure
+// (zero information) gets none. floor_information must be positive definite.
+Mat6 information_with_floor(const Mat6& estimate_information, const Mat6& floor_information);
+
 }  // namespace vilslam::loop

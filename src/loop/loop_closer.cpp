@@ -169,20 +169,33 @@ LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, dou
       config_.max_odometry_disagreement_m + config_.max_odometry_disagreement_per_m * r.path_length_m) {
     return rejected(std::move(r), "odometry_disagree");
   }
+  // EPnP's information, from its reprojection Jacobians, moved into the key scans' frames, and ICP's, from its J^T J.
+  const Mat6 epnp_information = information_in_lidar_frames(
+      pnp_information(pnp.T_C0cur_C0prev, p_C0u, xy_C0v, v.image.focal_px, config_.pnp_reprojection_px,
+                      config_.epnp_sigma_px),
+      pnp.T_C0cur_C0prev, v.T_L_C0);
+  // Along a degenerate direction the remapping kept EPnP's value: ICP measured nothing there.
+  Vec6 icp_eigenvalues = icp.degeneracy.eigenvalues;
+  for (int i = 0; i < 6; ++i) {
+    if (icp_matches == 0 || icp_eigenvalues(i) / icp_matches < config_.icp_min_eigenvalue_per_match) {
+      icp_eigenvalues(i) = 0.0;
+    }
+  }
+  const Mat6& V = icp.degeneracy.eigenvectors;
+  const Mat6 icp_information =
+      V * icp_eigenvalues.asDiagonal() * V.transpose() / (config_.icp_sigma_m * config_.icp_sigma_m);
   if (config_.fuse_epnp_icp) {
-    const Mat6 epnp_information = information_in_lidar_frames(
-        pnp_information(pnp.T_C0cur_C0prev, p_C0u, xy_C0v, v.image.focal_px, config_.pnp_reprojection_px,
-                        config_.epnp_sigma_px),
-        pnp.T_C0cur_C0prev, v.T_L_C0);
-    const Mat6& V = icp.degeneracy.eigenvectors;
-    const Mat6 icp_information =
-        V * icp.degeneracy.eigenvalues.asDiagonal() * V.transpose() / (config_.icp_sigma_m * config_.icp_sigma_m);
     r.T_Lu_Lv = fuse_estimates(r.T_Lu_Lv_epnp, epnp_information, r.T_Lu_Lv_icp, icp_information);
   }
-  // Loop factor noise from the config sigmas (docs/loop.md: why not ICP's J^T J), [rho; phi] order.
-  r.information = Mat6::Zero();
-  r.information.diagonal() << Vec3::Constant(1.0 / (config_.loop_sigma_m * config_.loop_sigma_m)),
+  // Loop factor noise: the config sigmas (docs/loop.md: why not ICP's J^T J alone) plus, where neither estimate
+  // measures a direction well (outdoors, the axis along which ICP kept a distant-point EPnP), the combined
+  // estimate's own covariance.
+  Mat6 floor_information = Mat6::Zero();
+  floor_information.diagonal() << Vec3::Constant(1.0 / (config_.loop_sigma_m * config_.loop_sigma_m)),
       Vec3::Constant(1.0 / (config_.loop_sigma_rad * config_.loop_sigma_rad));
+  r.information = config_.loop_covariance_from_estimates
+                      ? information_with_floor(epnp_information + icp_information, floor_information)
+                      : floor_information;
   return r;
 }
 

@@ -67,6 +67,9 @@ struct LoopClosureConfig {
   // Loop factor noise for the global pose graph.
   double loop_sigma_m = 0.02;
   double loop_sigma_rad = 0.002;
+  // Add the covariance of EPnP and ICP combined (their informations summed) to the sigmas above: a loop then
+  // hardly constrains a direction neither measures well. false: the sigmas alone.
+  bool loop_covariance_from_estimates = true;
 };
 
 // The `loop_closure:` section of a run config, bound to c's fields; validate after reading.

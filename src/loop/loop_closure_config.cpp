@@ -45,6 +45,7 @@ YamlFields loop_closure_yaml_fields(LoopClosureConfig& c) {
       yaml_value("max_odometry_disagreement_per_m", c.max_odometry_disagreement_per_m),
       yaml_value("loop_sigma_m", c.loop_sigma_m),
       yaml_value("loop_sigma_rad", c.loop_sigma_rad),
+      yaml_value("loop_covariance_from_estimates", c.loop_covariance_from_estimates),
   };
 }
 

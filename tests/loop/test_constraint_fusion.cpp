@@ -1,5 +1,6 @@
 // EPnP information from reprojection Jacobians, its move into the key scans' frames, and the fusion of two
-// estimates: each checked against finite differences or a case with a known answer.
+// estimates, and the loop factor's information: each checked against finite differences or a case with a
+// known answer.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -100,6 +101,31 @@ TEST(ConstraintFusion, EachDirectionComesFromTheEstimateThatKnowsIt) {
   // Equal information: half way.
   const SE3 half = fuse_estimates(T_a, Mat6::Identity(), T_b, Mat6::Identity());
   EXPECT_LT(((T_b.inverse() * half).log() - 0.5 * offset).norm(), 1e-12);
+}
+
+// The loop factor's information: the estimate's covariance plus the floor's, also where the estimate knows nothing.
+TEST(ConstraintFusion, InformationWithFloorAddsTheCovariances) {
+  Vec6 floor_diagonal, estimate_diagonal;
+  floor_diagonal << 2500, 2500, 2500, 250000, 250000, 250000;  // 2 cm, 0.002 rad
+  estimate_diagonal << 1e8, 100, 0, 1e9, 40000, 0;            // 0.1 mm, 10 cm, nothing, ...
+  const Mat6 F = floor_diagonal.asDiagonal();
+  const Mat6 diagonal = information_with_floor(estimate_diagonal.asDiagonal(), F);
+  for (int k = 0; k < 6; ++k) {
+    const double expected =
+        estimate_diagonal[k] > 0 ? 1.0 / (1.0 / estimate_diagonal[k] + 1.0 / floor_diagonal[k]) : 0.0;
+    EXPECT_NEAR(diagonal(k, k), expected, 1e-9 * floor_diagonal[k]) << k;
+  }
+  EXPECT_LT((diagonal - Mat6(diagonal.diagonal().asDiagonal())).norm(), 1e-6);
+  // A full estimate information: (A^-1 + F^-1)^-1, symmetric.
+  std::mt19937 rng(3);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  Mat6 B;
+  for (int i = 0; i < 36; ++i) B(i / 6, i % 6) = normal(rng);
+  const Mat6 A = 1000.0 * (B * B.transpose() + Mat6::Identity());
+  const Mat6 expected = (A.inverse() + F.inverse()).inverse();
+  const Mat6 full = information_with_floor(A, F);
+  EXPECT_LT((full - expected).norm(), 1e-9 * expected.norm());
+  EXPECT_EQ(full, full.transpose());
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 // highbay (similar racks) is rejected, the time gap holds back recent key frames, and reruns are identical.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 #include <cstring>
 #include <iostream>
@@ -83,11 +85,23 @@ TEST(LoopCloser, SamePlaceEpnpWithinCentimetresIcpBetter) {
   EXPECT_LT(icp.translation_m, 0.03);
   EXPECT_LT(icp.rotation_rad, 0.2 * kDeg);
   EXPECT_LT(icp.translation_m, 0.5 * epnp.translation_m);  // ICP clearly improves on EPnP
-  // The loop factor's information comes from the config sigmas.
+  // The loop factor's information: the config sigmas, lowered a little by the estimates' own covariance, which
+  // is small here (both measure every direction).
   const LoopClosureConfig config;
-  EXPECT_DOUBLE_EQ(r.information(0, 0), 1.0 / (config.loop_sigma_m * config.loop_sigma_m));
-  EXPECT_DOUBLE_EQ(r.information(5, 5), 1.0 / (config.loop_sigma_rad * config.loop_sigma_rad));
-  EXPECT_DOUBLE_EQ(r.information(0, 1), 0.0);
+  const double floor_m = 1.0 / (config.loop_sigma_m * config.loop_sigma_m);
+  const double floor_rad = 1.0 / (config.loop_sigma_rad * config.loop_sigma_rad);
+  for (int k = 0; k < 6; ++k) {
+    const double floor = k < 3 ? floor_m : floor_rad;
+    EXPECT_LE(r.information(k, k), floor) << k;
+    EXPECT_GT(r.information(k, k), 0.8 * floor) << k;
+  }
+  LoopClosureConfig sigmas_only;
+  sigmas_only.loop_covariance_from_estimates = false;
+  const std::vector<LoopCandidateRecord> only = detect_A_then(key_frame_B(), {pose_A(), pose_B()}, sigmas_only);
+  ASSERT_EQ(only.size(), 1u);
+  EXPECT_DOUBLE_EQ(only[0].information(0, 0), floor_m);
+  EXPECT_DOUBLE_EQ(only[0].information(5, 5), floor_rad);
+  EXPECT_DOUBLE_EQ(only[0].information(0, 1), 0.0);
 }
 
 TEST(LoopCloser, SubmapOfNeighbouringKeyScans) {
@@ -246,6 +260,23 @@ TEST(LoopCloser, CorridorLoopTakesTheAxisFromEpnp) {
   EXPECT_EQ(r.icp_degenerate_directions, 1);
   EXPECT_LT(err.translation_m, 0.03);
   EXPECT_LT(err.rotation_rad, 0.2 * kDeg);
+  // The loop factor's information whitened by the sigmas' (2 cm, 0.002 rad): at most 1 in every direction.
+  // Along the axis ICP measured nothing, so there it is EPnP's: with EPnP's noise taken 10^4 times larger that one
+  // direction, and only it, drops far below the sigmas'.
+  const auto whitened_eigenvalues = [](const Mat6& information) {
+    Vec6 sigmas;
+    sigmas << Vec3::Constant(0.02), Vec3::Constant(0.002);
+    const Mat6 W = sigmas.asDiagonal();
+    return Eigen::SelfAdjointEigenSolver<Mat6>(W * information * W).eigenvalues();
+  };
+  EXPECT_LE(whitened_eigenvalues(r.information).maxCoeff(), 1.0 + 1e-9);
+  LoopClosureConfig weak_epnp;
+  weak_epnp.epnp_sigma_px = 1e4;
+  const LoopCandidateRecord weak = detect(weak_epnp);
+  const Vec6 weak_eigenvalues = whitened_eigenvalues(weak.information);
+  std::cout << "whitened loop information, EPnP noise 1e4 px: " << weak_eigenvalues.transpose() << "\n";
+  EXPECT_LT(weak_eigenvalues(0), 1e-3);
+  EXPECT_GT(weak_eigenvalues(1), 0.1);
   LoopClosureConfig strict;
   strict.icp_max_degenerate_directions = 0;
   EXPECT_EQ(detect(strict).rejected_by, "icp_degenerate");

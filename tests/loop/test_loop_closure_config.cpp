@@ -49,6 +49,7 @@ TEST(LoopClosureConfig, DefaultsAreValidAndEveryFieldRoundTrips) {
   c.max_odometry_disagreement_per_m = 0.03;
   c.loop_sigma_m = 0.05;
   c.loop_sigma_rad = 0.005;
+  c.loop_covariance_from_estimates = false;
   const std::string text = YAML::Dump(write_yaml_fields(loop_closure_yaml_fields(c)));
   LoopClosureConfig back = read(text);
   EXPECT_EQ(YAML::Dump(write_yaml_fields(loop_closure_yaml_fields(back))), text);
@@ -57,6 +58,7 @@ TEST(LoopClosureConfig, DefaultsAreValidAndEveryFieldRoundTrips) {
   EXPECT_EQ(back.descriptor_matching.ratio_test, 0.8);
   EXPECT_EQ(back.pnp_ransac_seed, 7u);
   EXPECT_EQ(back.loop_sigma_rad, 0.005);
+  EXPECT_FALSE(back.loop_covariance_from_estimates);
   EXPECT_EQ(back.icp_max_degenerate_directions, 0);
   EXPECT_EQ(back.icp_loss_scale_m, 0.07);
 }
