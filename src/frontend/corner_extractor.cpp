@@ -35,10 +35,13 @@ class FeatureGrid {
 
  private:
   long cell_of(float v) const { return static_cast<long>(std::floor(v / cell_px_)); }
-  static long long key(long cx, long cy) { return (static_cast<long long>(cx) << 32) ^ (cy & 0xffffffffLL); }
+  // Both cell indices' 32-bit patterns in one key (unsigned: shifting a negative signed value is undefined).
+  static unsigned long long key(long cx, long cy) {
+    return (static_cast<unsigned long long>(cx) << 32) ^ (static_cast<unsigned long long>(cy) & 0xffffffffULL);
+  }
 
   double cell_px_;
-  std::unordered_map<long long, std::vector<cv::Point2f>> cells_;
+  std::unordered_map<unsigned long long, std::vector<cv::Point2f>> cells_;
 };
 
 }  // namespace
