@@ -103,6 +103,8 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
 
   LidarMappingResult out;
   out.t_ns = end_t_ns;
+  // The prior's tilt (its up direction in L; VIO: referenced to gravity), for the registration's tilt prior.
+  if (T_W_L_prior_end) out.up_L_prior = T_W_L_prior_end->rotation().transpose() * Vec3::UnitZ();
   if (!previous_) {
     // The first scan defines the map frame: the VIO world frame when a prior is given.
     out.T_W_L = T_W_L_prior_end.value_or(SE3());
@@ -110,11 +112,8 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
   } else {
     // Paper: L*_{k+1} = L_k T_trans.
     const SE3 T_trans = motion_since_previous(end_t_ns, T_W_L_prior_end);
-    // The prior's tilt (its up direction in L; VIO: referenced to gravity) for the registration's tilt prior.
-    std::optional<Vec3> up_L_prior;
-    if (T_W_L_prior_end) up_L_prior = T_W_L_prior_end->rotation().transpose() * Vec3::UnitZ();
     RegistrationResult r =
-        register_scan(features, map_, previous_->T_W_L * T_trans, config_.lidar.registration, up_L_prior);
+        register_scan(features, map_, previous_->T_W_L * T_trans, config_.lidar.registration, out.up_L_prior);
     if (lidar_only_refine) r = reregister_lidar_only(raw, end_t_ns, r.T_W_L, features);
     out.T_W_L = r.T_W_L;
     out.degenerate = r.degeneracy.degenerate();

@@ -33,6 +33,7 @@ struct LidarMappingResult {
   SE3 T_W_L;
   bool degenerate = false;             // some direction was below the degeneracy threshold
   std::vector<Vec6> degenerate_directions;  // those directions, unit [rho; phi] in L (the prior's motion kept)
+  std::optional<Vec3> up_L_prior;      // the prior's up direction R_W_L^T e_z at t_ns (VIO: against gravity), if any
   Vec6 information_eigenvalues = Vec6::Zero();  // of J^T J at the solution, ascending
   double rms_residual_m = 0.0;         // registration fit (RegistrationResult); 0 for the first sweep
   double matched_fraction = 0.0;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
+#include <string>
 
 
 namespace vilslam::loop {
@@ -23,9 +24,10 @@ std::size_t anchor_slot(const std::vector<std::size_t>& anchors, std::size_t ind
 GlobalPoseGraph::GlobalPoseGraph(const GlobalPoseGraphConfig& config)
     : config_(config),
       odometry_covariance_(information_from_sigmas(config.odometry_sigma_m, config.odometry_sigma_rad).inverse()) {
-  if (config.anchor_spacing == 0 || config.max_anchors < 2 || !(config.degenerate_sigma >= 0.0)) {
-    throw std::invalid_argument(
-        "global pose graph: anchor_spacing must be >= 1, max_anchors >= 2 and degenerate_sigma >= 0");
+  if (config.anchor_spacing == 0 || config.max_anchors < 2 || !(config.degenerate_sigma >= 0.0) ||
+      !(config.tilt_sigma_rad >= 0.0)) {
+    throw std::invalid_argument("global pose graph: anchor_spacing must be >= 1, max_anchors >= 2, degenerate_sigma "
+                                "and tilt_sigma_rad >= 0");
   }
 }
 
@@ -34,6 +36,7 @@ std::size_t GlobalPoseGraph::add_first_pose(TimeNs t_ns, const SE3& T_W_L) {
   poses_.push_back({t_ns, T_W_L});
   odometry_.push_back(SE3());
   step_covariances_.push_back(odometry_covariance_);
+  up_L_.emplace_back();
   return 0;
 }
 
@@ -49,7 +52,16 @@ std::size_t GlobalPoseGraph::add_odometry(TimeNs t_ns, const SE3& T_prev_cur,
     covariance += variance * unit * unit.transpose();
   }
   step_covariances_.push_back(covariance);
+  up_L_.emplace_back();
   return poses_.size() - 1;
+}
+
+void GlobalPoseGraph::set_up_direction(std::size_t index, const Vec3& up_L) {
+  if (index >= poses_.size() || !up_L.allFinite() || up_L.norm() < 1e-9) {
+    throw std::invalid_argument("global pose graph: up direction of pose " + std::to_string(index) +
+                                " is not finite and non-zero or the pose is not added");
+  }
+  up_L_[index] = up_L.normalized();
 }
 
 void GlobalPoseGraph::add_loop(std::size_t from_index, std::size_t to_index, const SE3& T_from_to,
@@ -117,6 +129,11 @@ CorrectionSummary GlobalPoseGraph::optimize() {
     if (lower_end(c) < start) continue;
     reduced.add_constraint({anchor_slot(anchors, c.from_index), anchor_slot(anchors, c.to_index), c.T_from_to,
                             c.information, ConstraintKind::kLoop});
+  }
+  if (config_.tilt_sigma_rad > 0.0) {
+    for (std::size_t k = 1; k < anchors.size(); ++k) {  // the window's first pose is fixed
+      if (up_L_[anchors[k]]) reduced.add_tilt({k, *up_L_[anchors[k]], config_.tilt_sigma_rad});
+    }
   }
   PoseGraphOptions options;
   options.loop_loss = config_.loop_loss;

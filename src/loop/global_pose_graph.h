@@ -7,6 +7,7 @@
 // The cost of one correction stays bounded as the graph grows (bench/global_pose_graph.cpp, up to 20,000 poses).
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "common/lie.h"
@@ -23,6 +24,9 @@ struct GlobalPoseGraphConfig {
   // VIO's motion (a corridor's axis), which drifts more, so a loop's correction goes mostly there. Chosen on
   // the tuning seed 2 of the loop preset (docs/pose_graph.md); 0 = every sweep alike.
   double degenerate_sigma = 0.1;
+  // Sigma of the gravity-tilt factor on each anchor with a measured up direction (set_up_direction, the VIO's);
+  // 0 = none. Without it a loop can bend the route in roll and pitch to fit one tilted key frame.
+  double tilt_sigma_rad = 0.0;
   RobustLoss loop_loss = RobustLoss::kHuber;
   // Whitened units. 1 bounds a wrong loop's pull best; 3.5 converges in fewer iterations but lets a wrong
   // loop pull 4x harder (docs/pose_graph.md, "Bounded correction").
@@ -55,6 +59,9 @@ class GlobalPoseGraph {
   // degenerate_directions: unit [rho; phi] directions in the current frame that the sweep's registration did
   // not constrain (lidar::LidarMappingResult); each adds config.degenerate_sigma^2 v v^T to the step's covariance.
   std::size_t add_odometry(TimeNs t_ns, const SE3& T_prev_cur, const std::vector<Vec6>& degenerate_directions = {});
+  // The pose's up direction R_W_L^T e_z as measured against gravity (the VIO's at the same instant); used when
+  // config.tilt_sigma_rad > 0. Throws std::invalid_argument on a bad index or a non-finite or zero vector.
+  void set_up_direction(std::size_t index, const Vec3& up_L);
   // A loop factor measuring T_from_to = (T_W_from)^-1 T_W_to; throws std::invalid_argument on a bad index
   // or an information matrix that is not symmetric positive definite.
   void add_loop(std::size_t from_index, std::size_t to_index, const SE3& T_from_to, const Mat6& information);
@@ -77,6 +84,7 @@ class GlobalPoseGraph {
   Trajectory poses_;
   std::vector<SE3> odometry_;  // odometry_[i] = measured T_{i-1,i}; odometry_[0] unused
   Mat6List step_covariances_;  // of odometry_[i]
+  std::vector<std::optional<Vec3>> up_L_;  // measured up direction per pose
   std::vector<RelativePoseConstraint> loops_;
   std::size_t first_new_loop_pose_ = kNone;  // lowest pose touched by a loop added since the last optimize()
 };

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "loop/relative_pose_factor.h"
+#include "loop/tilt_factor.h"
 
 namespace vilslam::loop {
 namespace {
@@ -79,6 +80,17 @@ void PoseGraph::add_constraint(const RelativePoseConstraint& constraint) {
   constraints_.push_back(constraint);
 }
 
+void PoseGraph::add_tilt(const TiltConstraint& tilt) {
+  if (tilt.index >= poses_.size()) {
+    throw std::invalid_argument("pose graph: tilt factor on pose " + std::to_string(tilt.index) + ", not added (" +
+                                std::to_string(poses_.size()) + " poses)");
+  }
+  if (!(tilt.sigma_rad > 0.0) || !std::isfinite(tilt.sigma_rad) || !tilt.up_L.allFinite() || tilt.up_L.norm() < 1e-9) {
+    throw std::invalid_argument("pose graph: tilt factor needs a positive sigma and a finite, non-zero up direction");
+  }
+  tilts_.push_back(tilt);
+}
+
 PoseGraphSummary PoseGraph::optimize(const PoseGraphOptions& options) {
   PoseGraphSummary summary;
   if (poses_.empty()) return summary;
@@ -97,6 +109,10 @@ PoseGraphSummary PoseGraph::optimize(const PoseGraphOptions& options) {
     ceres::LossFunction* loss =
         c.kind == ConstraintKind::kLoop ? make_loss(options.loop_loss, options.loop_loss_scale).release() : nullptr;
     problem.AddResidualBlock(cost, loss, blocks[c.from_index].data(), blocks[c.to_index].data());
+  }
+  for (const TiltConstraint& t : tilts_) {
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<TiltFactor, 3, kPoseBlockSize>(new TiltFactor(t.up_L, t.sigma_rad)),
+                             nullptr, blocks[t.index].data());
   }
   problem.SetParameterBlockConstant(blocks.front().data());
 

@@ -25,6 +25,13 @@ struct RelativePoseConstraint {
   ConstraintKind kind = ConstraintKind::kOdometry;
 };
 
+// Gravity tilt of one pose (loop/tilt_factor.h): its up direction R_W_L^T e_z measured as up_L (e.g. by the VIO).
+struct TiltConstraint {
+  std::size_t index = 0;
+  Vec3 up_L = Vec3::UnitZ();
+  double sigma_rad = 0.01;
+};
+
 enum class RobustLoss { kNone, kHuber, kCauchy };
 
 struct PoseGraphOptions {
@@ -61,6 +68,8 @@ class PoseGraph {
   // Throws std::invalid_argument on an index out of range, from == to, or an information matrix that is
   // not symmetric positive definite.
   void add_constraint(const RelativePoseConstraint& constraint);
+  // Throws std::invalid_argument on an index out of range, a non-positive sigma or a non-finite or zero up_L.
+  void add_tilt(const TiltConstraint& tilt);
 
   // Optimizes all poses from their current values; pose 0 stays fixed.
   PoseGraphSummary optimize(const PoseGraphOptions& options = {});
@@ -71,6 +80,7 @@ class PoseGraph {
  private:
   Trajectory poses_;
   std::vector<RelativePoseConstraint> constraints_;
+  std::vector<TiltConstraint> tilts_;
 };
 
 // Throws std::invalid_argument on an index not below pose_count, from == to, or an information matrix that is not
