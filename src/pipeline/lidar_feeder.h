@@ -28,6 +28,8 @@ class LidarFeeder {
   void poses_advanced();
   // Sweeps no VIO pose covers (before initialization or after the last pose) are left unmapped.
   std::size_t unmapped_scans() const { return unmapped_ + waiting_.size(); }
+  // Sweeps still waiting for the VIO poses to reach their end.
+  std::size_t waiting_scans() const { return waiting_.size(); }
 
  private:
   void map(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior,

@@ -1,5 +1,7 @@
 #include "pipeline/offline_runner.h"
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <deque>
 #include <limits>
@@ -13,6 +15,7 @@
 #include "common/error.h"
 #include "frontend/frontend.h"
 #include "pipeline/lidar_feeder.h"
+#include "pipeline/live_propagator.h"
 #include "pipeline/stage.h"
 #include "pipeline/time_offset_pass.h"
 
@@ -39,12 +42,26 @@ struct TrackedFrame {
 using VioMessage = std::variant<ImuSample, TrackedFrame, LidarScan>;
 using FrontendMessage = std::variant<ImuSample, StereoFrame, LidarScan>;
 
+// What the modules see of the real-time mode (none offline): the clock, the load the overload policy reads, and
+// the statistics each module's thread adds to (every field is written by one thread only).
+struct RealtimeContext {
+  RealtimeContext(TimeNs first_t_ns, const OfflineRunConfig& config, const RigCalibration& calib,
+                  RealtimeStats* stats_out)
+      : clock(first_t_ns, config.realtime.speed),
+        live(calib.imu, Vec3(0, 0, -config.vio.smoother.gravity_m_s2)), stats(stats_out) {}
+  SensorClock clock;
+  PipelineLoad load;
+  LivePropagator live;  // the IMU-rate poses published as the samples arrive
+  RealtimeStats* stats;
+};
+
 // LiDAR mapping and loop closure (paper: the LiDAR mapping and loop closure threads). Keeps its own copy of
 // the VIO's IMU-rate poses, grown exactly as the VIO published them, so it never reads the VIO's memory.
 class LidarSide {
  public:
-  LidarSide(const RigCalibration& calib, const OfflineRunConfig& config, OfflineRunResult* result)
-      : result_(result) {
+  LidarSide(const RigCalibration& calib, const OfflineRunConfig& config, OfflineRunResult* result,
+            RealtimeContext* realtime)
+      : result_(result), realtime_(realtime) {
     const bool with_vio = config.mode == RunMode::kVil;  // the LiDAR side exists only in vil and lidar-only
     if (with_vio) {
       std::shared_ptr<const Vocabulary> vocabulary;
@@ -66,16 +83,31 @@ class LidarSide {
     } else {
       lidar_->scan(std::move(std::get<LidarScan>(message)));
     }
+    if (realtime_) account_sweeps();
   }
 
   void finish() {
     lidar_->poses_advanced();
+    if (realtime_) account_sweeps();
     result_->unmapped_scans = lidar_->unmapped_scans();
     if (loop_) result_->loop = loop_->finish();
   }
 
  private:
+  // The sweeps mapped (or given up) since the last call: their poses' latencies, and the load they leave.
+  void account_sweeps() {
+    for (; latency_counted_ < result_->lidar.size(); ++latency_counted_) {
+      realtime_->stats->lidar_pose_latency_ms.push_back(realtime_->clock.since_ms(result_->lidar[latency_counted_].t_ns));
+    }
+    const std::size_t done = result_->lidar.size() + lidar_->unmapped_scans() - lidar_->waiting_scans();
+    realtime_->load.sweeps -= done - sweeps_done_;
+    sweeps_done_ = done;
+  }
+
   OfflineRunResult* result_;
+  RealtimeContext* realtime_;
+  std::size_t latency_counted_ = 0;
+  std::size_t sweeps_done_ = 0;
   Trajectory imu_poses_;
   Trajectory imu_motion_;
   std::optional<LoopClosureModule> loop_;
@@ -88,9 +120,15 @@ class LidarSide {
 class SmootherSide {
  public:
   SmootherSide(const RigCalibration& calib, const OfflineRunConfig& config, OfflineRunResult* result,
-               Stage<LidarMessage>* lidar)
-      : vio_(calib, config.vio), result_(result), lidar_(lidar) {
-    vio_.on_state([this](const VioStateOutput& s) { result_->camera_states.push_back({s.state.t_ns, s.state.T_W_I()}); });
+               Stage<LidarMessage>* lidar, RealtimeContext* realtime)
+      : vio_(calib, config.vio), result_(result), lidar_(lidar), realtime_(realtime) {
+    vio_.on_state([this](const VioStateOutput& s) {
+      result_->camera_states.push_back({s.state.t_ns, s.state.T_W_I()});
+      if (realtime_) {
+        realtime_->stats->camera_state_latency_ms.push_back(realtime_->clock.since_ms(s.state.t_ns));
+        realtime_->live.anchor(s.state);
+      }
+    });
     vio_.on_imu_pose([this](const VioImuOutput& p) {
       result_->imu_poses.push_back({p.t_ns, p.T_W_I});
       result_->imu_motion.push_back({p.t_ns, p.T_O_I});
@@ -123,6 +161,7 @@ class SmootherSide {
       vio_.add_frame(pending_.front());
       result_->smoother_ms.push_back(elapsed_ms(start));
       pending_.pop_front();
+      if (realtime_) --realtime_->load.frames;
     }
   }
 
@@ -137,6 +176,7 @@ class SmootherSide {
   Vio vio_;
   OfflineRunResult* result_;
   Stage<LidarMessage>* lidar_;
+  RealtimeContext* realtime_;
   std::deque<FrontendOutput> pending_;
   std::size_t sent_ = 0;
 };
@@ -226,12 +266,19 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
                    config.time_offset.window_s, calib.cam_time_offset_ns);
     }
   }
+  std::optional<RealtimeContext> realtime;
+  if (config.realtime.speed > 0.0) {
+    result.realtime.emplace();
+    result.realtime->speed = config.realtime.speed;
+    realtime.emplace(summary.start_t_ns, config, calib, &*result.realtime);
+  }
+  RealtimeContext* const realtime_ptr = realtime ? &*realtime : nullptr;
   // The modules, downstream first so that they outlive the upstream ones that feed them.
   const bool with_vio = config.mode != RunMode::kLidarOnly;
   std::optional<LidarSide> lidar_side;
   std::optional<Stage<LidarMessage>> lidar;
   if (config.mode != RunMode::kVio) {
-    lidar_side.emplace(calib, config, &result);
+    lidar_side.emplace(calib, config, &result, realtime_ptr);
     lidar.emplace([&](LidarMessage&& m) { lidar_side->handle(std::move(m)); }, config.threads);
   }
   std::optional<SmootherSide> smoother_side;
@@ -239,7 +286,7 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
   std::optional<FrontendSide> frontend_side;
   std::optional<Stage<FrontendMessage>> frontend;
   if (with_vio) {
-    smoother_side.emplace(calib, config, &result, lidar ? &*lidar : nullptr);
+    smoother_side.emplace(calib, config, &result, lidar ? &*lidar : nullptr, realtime_ptr);
     smoother.emplace([&](VioMessage&& m) { smoother_side->handle(std::move(m)); }, config.threads);
     frontend_side.emplace(calib, config, &result, &*smoother);
     frontend.emplace([&](FrontendMessage&& m) { frontend_side->handle(std::move(m)); }, config.threads);
@@ -248,7 +295,42 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
     return (frontend && frontend->failed()) || (smoother && smoother->failed()) || (lidar && lidar->failed());
   };
 
+  // Real-time mode: the overload policy drops a stereo pair or a sweep when too many wait already.
+  enum class Arrival { kStereoPair, kSweep };
+  const auto admit = [&](Arrival arrival) {
+    if (!realtime) return true;
+    const bool sweep = arrival == Arrival::kSweep;
+    std::atomic<std::size_t>& waiting = sweep ? realtime->load.sweeps : realtime->load.frames;
+    const std::size_t max_waiting = sweep ? config.realtime.max_sweeps_waiting : config.realtime.max_frames_waiting;
+    std::size_t& dropped = sweep ? result.realtime->dropped_sweeps : result.realtime->dropped_frames;
+    if (waiting >= max_waiting) {
+      ++dropped;
+      return false;
+    }
+    ++waiting;
+    return true;
+  };
+  const auto push_sweep = [&](LidarScan&& scan) {
+    if (lidar && !admit(Arrival::kSweep)) return;
+    if (frontend) frontend->push(std::move(scan));
+    else if (lidar) lidar->push(std::move(scan));
+  };
+  // Real-time mode: a sweep is released at its end, when a live driver publishes it.
+  std::deque<LidarScan> held_sweeps;
+  const auto wait_until = [&](TimeNs t_ns) {
+    result.realtime->max_release_lag_ms = std::max(result.realtime->max_release_lag_ms, realtime->clock.wait_until(t_ns));
+  };
+  const auto release_until = [&](TimeNs t_ns) {
+    while (!held_sweeps.empty() && held_sweeps.front().end_t_ns() <= t_ns) {
+      wait_until(held_sweeps.front().end_t_ns());
+      push_sweep(std::move(held_sweeps.front()));
+      held_sweeps.pop_front();
+    }
+    wait_until(t_ns);
+  };
+
   reader.rewind();
+  if (realtime) realtime->clock.restart();
   // The IMU stream may run on long after the last image (EuRoC slices): stop at the first IMU sample after
   // the last frame, which hands that frame to the smoother.
   std::size_t frames_read = 0;
@@ -260,27 +342,35 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
     if (progress) progress(double(event->t_ns - summary.start_t_ns) / span_ns);
     if (!first_t_ns) first_t_ns = event->t_ns;
     last_t_ns = event->t_ns;
+    if (realtime) release_until(event->t_ns);
     bool last_frame_handed_over = false;
     std::visit(
         [&](auto& data) {
           using T = std::decay_t<decltype(data)>;
           if constexpr (std::is_same_v<T, ImuSample>) {
             last_frame_handed_over = frames_read >= summary.stereo_frames && data.t_ns > last_frame_t_ns;
+            if (realtime && with_vio) {  // published before the sample goes down the pipeline
+              if (const std::optional<SE3> T_W_I = realtime->live.add(data)) {
+                result.realtime->live_imu_poses.push_back({data.t_ns, *T_W_I});
+                result.realtime->imu_pose_latency_ms.push_back(realtime->clock.since_ms(data.t_ns));
+              }
+            }
             if (frontend) frontend->push(data);
           }
           if constexpr (std::is_same_v<T, StereoFrame>) {
             last_frame_t_ns = data.t_ns + calib.cam_time_offset_ns;
             ++frames_read;
-            if (frontend) frontend->push(std::move(data));
+            if (frontend && admit(Arrival::kStereoPair)) frontend->push(std::move(data));
           }
           if constexpr (std::is_same_v<T, LidarScan>) {
-            if (frontend) frontend->push(std::move(data));
-            else if (lidar) lidar->push(std::move(data));
+            if (realtime && lidar) held_sweeps.push_back(std::move(data));
+            else push_sweep(std::move(data));
           }
         },
         event->data);
     if ((with_vio && last_frame_handed_over) || failed()) break;
   }
+  if (realtime && !failed()) release_until(held_sweeps.empty() ? last_t_ns : held_sweeps.back().end_t_ns());
   if (frontend) frontend->finish();
   if (smoother) {
     smoother->finish();

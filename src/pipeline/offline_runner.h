@@ -19,6 +19,7 @@
 #include "loop/global_pose_graph.h"
 #include "loop/loop_closer.h"
 #include "pipeline/loop_closure_module.h"
+#include "pipeline/realtime.h"
 #include "vio/time_offset.h"
 #include "vio/vio.h"
 
@@ -43,6 +44,20 @@ struct OfflineRunConfig {
   std::string vocabulary = "default";   // a vocabulary file, or "default": default_vocabulary_path()
   TimeOffsetConfig time_offset;          // vio and vil: estimate the camera-IMU time offset before the run
   bool threads = true;  // the frontend, the smoother and the LiDAR side each on a thread (same output as without)
+  RealtimeConfig realtime;  // speed 0: offline (deterministic); > 0: events on the wall clock (pipeline/realtime.h)
+};
+
+// Real-time mode only: each output's latency (wall time from its measurement's instant to its publication) and
+// what the overload policy dropped.
+struct RealtimeStats {
+  double speed = 0.0;
+  Trajectory live_imu_poses;  // T_W_I published as each IMU sample arrived (pipeline/live_propagator.h)
+  std::vector<double> imu_pose_latency_ms;      // per live IMU-rate pose, from its IMU sample's time
+  std::vector<double> camera_state_latency_ms;  // per optimized camera-rate state, from its stereo pair's time
+  std::vector<double> lidar_pose_latency_ms;    // per mapped sweep, from the sweep's end
+  std::size_t dropped_frames = 0;
+  std::size_t dropped_sweeps = 0;
+  double max_release_lag_ms = 0.0;  // how late the reader released an event (reading it took longer than its slot)
 };
 
 struct OfflineRunResult {
@@ -59,6 +74,7 @@ struct OfflineRunResult {
   std::optional<TimeOffsetEstimate> time_offset;  // when estimated (config.time_offset.enabled) and observable
   double data_s = 0;      // time span of the events read (the sensors' time)
   double run_wall_s = 0;  // wall time of run_offline (data_s / run_wall_s > 1: faster than real time)
+  std::optional<RealtimeStats> realtime;  // when config.realtime.speed > 0
 };
 
 // Runs the whole sequence. Throws InputError for bad input, including a mode the dataset cannot serve

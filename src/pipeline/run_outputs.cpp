@@ -55,6 +55,17 @@ std::string timings_json(RunMode mode, const OfflineRunResult& r) {
     write_timing(json, "loop_detection_and_constraints", r.loop->detection_ms);
     write_timing(json, "loop_correction", r.loop->correction_ms);
   }
+  if (r.realtime) {
+    json.key("realtime").begin_object();
+    json.key("speed").value(r.realtime->speed);
+    json.key("dropped_stereo_pairs").value(static_cast<std::uint64_t>(r.realtime->dropped_frames));
+    json.key("dropped_sweeps").value(static_cast<std::uint64_t>(r.realtime->dropped_sweeps));
+    json.key("max_release_lag_ms").value(r.realtime->max_release_lag_ms);
+    write_timing(json, "imu_pose_latency", r.realtime->imu_pose_latency_ms);
+    write_timing(json, "camera_state_latency", r.realtime->camera_state_latency_ms);
+    write_timing(json, "lidar_pose_latency", r.realtime->lidar_pose_latency_ms);
+    json.end_object();
+  }
   json.end_object();
   return json.str();
 }
@@ -101,6 +112,9 @@ void write_run_outputs(const std::string& out_dir, const OfflineRunConfig& confi
   if (mode != RunMode::kLidarOnly) {
     write_trajectory((partial / "vio_camera.tum").string(), result.camera_states, TrajectoryFormat::kTum);
     write_trajectory((partial / "vio_imu.tum").string(), result.imu_poses, TrajectoryFormat::kTum);
+    if (result.realtime) {
+      write_trajectory((partial / "vio_imu_live.tum").string(), result.realtime->live_imu_poses, TrajectoryFormat::kTum);
+    }
   }
   if (mode != RunMode::kVio) {
     if (result.loop) {

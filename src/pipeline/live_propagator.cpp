@@ -1,0 +1,35 @@
+#include "pipeline/live_propagator.h"
+
+#include <algorithm>
+
+namespace vilslam {
+
+void LivePropagator::anchor(const NavState& newest) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  new_anchor_ = newest;
+}
+
+std::optional<SE3> LivePropagator::add(const ImuSample& sample) {
+  std::optional<NavState> anchor;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    std::swap(anchor, new_anchor_);
+  }
+  samples_.push_back(sample);
+  if (anchor) {
+    // Keep the samples from the last one at or before the anchor on, and integrate them from it.
+    const auto first_after = std::upper_bound(samples_.begin(), samples_.end(), anchor->t_ns,
+                                              [](TimeNs t, const ImuSample& s) { return t < s.t_ns; });
+    samples_.erase(samples_.begin(), first_after == samples_.begin() ? first_after : first_after - 1);
+    propagator_.reset(*anchor, samples_);
+    anchor_t_ns_ = anchor->t_ns;
+  } else if (anchor_t_ns_) {
+    propagator_.add(sample);
+  } else {
+    samples_.erase(samples_.begin(), samples_.end() - 1);  // nothing to propagate from yet: keep the last only
+  }
+  if (!anchor_t_ns_ || sample.t_ns <= *anchor_t_ns_) return std::nullopt;
+  return propagator_.current().T_W_I();
+}
+
+}  // namespace vilslam
