@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -26,9 +25,9 @@ GlobalPoseGraph::GlobalPoseGraph(const GlobalPoseGraphConfig& config)
     : config_(config),
       odometry_covariance_(information_from_sigmas(config.odometry_sigma_m, config.odometry_sigma_rad).inverse()) {
   if (config.anchor_spacing == 0 || config.max_anchors < 2 || !(config.degenerate_sigma >= 0.0) ||
-      !(config.tilt_sigma_rad >= 0.0) || !(config.vio_rotation_sigma_rad_per_sqrt_s >= 0.0)) {
+      !(config.tilt_sigma_rad >= 0.0)) {
     throw std::invalid_argument("global pose graph: anchor_spacing must be >= 1, max_anchors >= 2, degenerate_sigma "
-                                "tilt_sigma_rad and vio_rotation_sigma_rad_per_sqrt_s >= 0");
+                                "and tilt_sigma_rad >= 0");
   }
 }
 
@@ -38,7 +37,6 @@ std::size_t GlobalPoseGraph::add_first_pose(TimeNs t_ns, const SE3& T_W_L) {
   odometry_.push_back(SE3());
   step_covariances_.push_back(odometry_covariance_);
   up_L_.emplace_back();
-  q_O_L_.emplace_back();
   return 0;
 }
 
@@ -55,7 +53,6 @@ std::size_t GlobalPoseGraph::add_odometry(TimeNs t_ns, const SE3& T_prev_cur,
   }
   step_covariances_.push_back(covariance);
   up_L_.emplace_back();
-  q_O_L_.emplace_back();
   return poses_.size() - 1;
 }
 
@@ -65,14 +62,6 @@ void GlobalPoseGraph::set_up_direction(std::size_t index, const Vec3& up_L) {
                                 " is not finite and non-zero or the pose is not added");
   }
   up_L_[index] = up_L.normalized();
-}
-
-void GlobalPoseGraph::set_vio_rotation(std::size_t index, const Quat& q_O_L) {
-  if (index >= poses_.size() || !q_O_L.coeffs().allFinite()) {
-    throw std::invalid_argument("global pose graph: VIO rotation of pose " + std::to_string(index) +
-                                " is not finite or the pose is not added");
-  }
-  q_O_L_[index] = q_O_L.normalized();
 }
 
 void GlobalPoseGraph::add_loop(std::size_t from_index, std::size_t to_index, const SE3& T_from_to,
@@ -144,16 +133,6 @@ CorrectionSummary GlobalPoseGraph::optimize() {
   if (config_.tilt_sigma_rad > 0.0) {
     for (std::size_t k = 1; k < anchors.size(); ++k) {  // the window's first pose is fixed
       if (up_L_[anchors[k]]) reduced.add_tilt({k, *up_L_[anchors[k]], config_.tilt_sigma_rad});
-    }
-  }
-  if (config_.vio_rotation_sigma_rad_per_sqrt_s > 0.0) {
-    for (std::size_t k = 0; k + 1 < anchors.size(); ++k) {
-      const std::optional<Quat>& a = q_O_L_[anchors[k]];
-      const std::optional<Quat>& b = q_O_L_[anchors[k + 1]];
-      if (!a || !b) continue;
-      const double dt_s = ns_to_s(poses_[anchors[k + 1]].t_ns - poses_[anchors[k]].t_ns);
-      const double sigma_rad = config_.vio_rotation_sigma_rad_per_sqrt_s * std::sqrt(std::max(dt_s, 1e-3));
-      reduced.add_rotation({k, k + 1, a->conjugate() * *b, sigma_rad});
     }
   }
   PoseGraphOptions options;

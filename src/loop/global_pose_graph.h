@@ -25,11 +25,9 @@ struct GlobalPoseGraphConfig {
   // the tuning seed 2 of the loop preset (docs/pose_graph.md); 0 = every sweep alike.
   double degenerate_sigma = 0.1;
   // Sigma of the gravity-tilt factor on each anchor with a measured up direction (set_up_direction, the VIO's);
-  // 0 = none. Without it a loop can bend the route in roll and pitch to fit one tilted key frame.
-  double tilt_sigma_rad = 0.0;
-  // Sigma of the VIO's rotation between consecutive anchors (set_vio_rotation), per square root of the seconds
-  // between them; 0 = none. Tells the graph where the LiDAR odometry's rotation went wrong.
-  double vio_rotation_sigma_rad_per_sqrt_s = 0.0;
+  // 0 = none. Without it a loop can bend the route in roll and pitch to fit one tilted key frame. Chosen on the
+  // tuning seeds 1, 2 and 7 (docs/pose_graph.md, "Tilt factors from the VIO").
+  double tilt_sigma_rad = 0.005;
   RobustLoss loop_loss = RobustLoss::kHuber;
   // Whitened units. 1 bounds a wrong loop's pull best; 3.5 converges in fewer iterations but lets a wrong
   // loop pull 4x harder (docs/pose_graph.md, "Bounded correction").
@@ -65,10 +63,6 @@ class GlobalPoseGraph {
   // The pose's up direction R_W_L^T e_z as measured against gravity (the VIO's at the same instant); used when
   // config.tilt_sigma_rad > 0. Throws std::invalid_argument on a bad index or a non-finite or zero vector.
   void set_up_direction(std::size_t index, const Vec3& up_L);
-  // The pose's rotation as the VIO's jump-free motion has it (q_O_L in the VIO's odometry frame O: only rotations
-  // between poses are used); used when config.vio_rotation_sigma_rad_per_sqrt_s > 0. std::invalid_argument on a
-  // bad index.
-  void set_vio_rotation(std::size_t index, const Quat& q_O_L);
   // A loop factor measuring T_from_to = (T_W_from)^-1 T_W_to; throws std::invalid_argument on a bad index
   // or an information matrix that is not symmetric positive definite.
   void add_loop(std::size_t from_index, std::size_t to_index, const SE3& T_from_to, const Mat6& information);
@@ -92,7 +86,6 @@ class GlobalPoseGraph {
   std::vector<SE3> odometry_;  // odometry_[i] = measured T_{i-1,i}; odometry_[0] unused
   Mat6List step_covariances_;  // of odometry_[i]
   std::vector<std::optional<Vec3>> up_L_;  // measured up direction per pose
-  std::vector<std::optional<Quat>> q_O_L_;  // the VIO's rotation per pose
   std::vector<RelativePoseConstraint> loops_;
   std::size_t first_new_loop_pose_ = kNone;  // lowest pose touched by a loop added since the last optimize()
 };

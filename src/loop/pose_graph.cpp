@@ -11,7 +11,6 @@
 #include <string>
 
 #include "loop/relative_pose_factor.h"
-#include "loop/relative_rotation_factor.h"
 #include "loop/tilt_factor.h"
 
 namespace vilslam::loop {
@@ -92,18 +91,6 @@ void PoseGraph::add_tilt(const TiltConstraint& tilt) {
   tilts_.push_back(tilt);
 }
 
-void PoseGraph::add_rotation(const RotationConstraint& rotation) {
-  if (rotation.from_index >= poses_.size() || rotation.to_index >= poses_.size() ||
-      rotation.from_index == rotation.to_index) {
-    throw std::invalid_argument("pose graph: rotation factor " + std::to_string(rotation.from_index) + " -> " +
-                                std::to_string(rotation.to_index) + " is not between two added poses");
-  }
-  if (!(rotation.sigma_rad > 0.0) || !std::isfinite(rotation.sigma_rad)) {
-    throw std::invalid_argument("pose graph: rotation factor needs a positive sigma");
-  }
-  rotations_.push_back(rotation);
-}
-
 PoseGraphSummary PoseGraph::optimize(const PoseGraphOptions& options) {
   PoseGraphSummary summary;
   if (poses_.empty()) return summary;
@@ -126,11 +113,6 @@ PoseGraphSummary PoseGraph::optimize(const PoseGraphOptions& options) {
   for (const TiltConstraint& t : tilts_) {
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<TiltFactor, 3, kPoseBlockSize>(new TiltFactor(t.up_L, t.sigma_rad)),
                              nullptr, blocks[t.index].data());
-  }
-  for (const RotationConstraint& r : rotations_) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<RelativeRotationFactor, 3, kPoseBlockSize, kPoseBlockSize>(
-                                 new RelativeRotationFactor(r.q_from_to, r.sigma_rad)),
-                             nullptr, blocks[r.from_index].data(), blocks[r.to_index].data());
   }
   problem.SetParameterBlockConstant(blocks.front().data());
 

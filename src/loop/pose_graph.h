@@ -32,14 +32,6 @@ struct TiltConstraint {
   double sigma_rad = 0.01;
 };
 
-// Rotation between two poses (loop/relative_rotation_factor.h), measured as q_from_to (e.g. by the VIO).
-struct RotationConstraint {
-  std::size_t from_index = 0;
-  std::size_t to_index = 0;
-  Quat q_from_to = Quat::Identity();
-  double sigma_rad = 0.01;
-};
-
 enum class RobustLoss { kNone, kHuber, kCauchy };
 
 struct PoseGraphOptions {
@@ -78,8 +70,6 @@ class PoseGraph {
   void add_constraint(const RelativePoseConstraint& constraint);
   // Throws std::invalid_argument on an index out of range, a non-positive sigma or a non-finite or zero up_L.
   void add_tilt(const TiltConstraint& tilt);
-  // Throws std::invalid_argument on an index out of range, from == to or a non-positive sigma.
-  void add_rotation(const RotationConstraint& rotation);
 
   // Optimizes all poses from their current values; pose 0 stays fixed.
   PoseGraphSummary optimize(const PoseGraphOptions& options = {});
@@ -91,7 +81,6 @@ class PoseGraph {
   Trajectory poses_;
   std::vector<RelativePoseConstraint> constraints_;
   std::vector<TiltConstraint> tilts_;
-  std::vector<RotationConstraint> rotations_;
 };
 
 // Throws std::invalid_argument on an index not below pose_count, from == to, or an information matrix that is not

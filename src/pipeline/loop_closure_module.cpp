@@ -115,10 +115,6 @@ void LoopClosureModule::scan_mapped(const lidar::LidarMappingResult& mapped, con
                                                       mapped.degenerate_directions)
                                 : graph_.add_first_pose(mapped.t_ns, mapped.T_W_L);
   if (mapped.up_L_prior) graph_.set_up_direction(index, *mapped.up_L_prior);
-  if (imu_motion_ && !imu_motion_->empty() && imu_motion_->front().t_ns <= mapped.t_ns &&
-      mapped.t_ns <= imu_motion_->back().t_ns) {
-    graph_.set_vio_rotation(index, (pose_at(*imu_motion_, mapped.t_ns) * calib_.T_I_L).quat());
-  }
   last_mapper_T_W_L_ = mapped.T_W_L;
   out_.lidar_global.push_back({mapped.t_ns, mapped.T_W_L});  // as published now
   if (!closer_ || pending_) return;

@@ -13,7 +13,7 @@ namespace vilslam {
 
 struct RealtimeConfig {
   double speed = 0.0;                  // > 0: real-time mode at this speed; 0: offline, as fast as possible
-  std::size_t max_frames_waiting = 2;  // a stereo pair arriving while this many wait for the smoother is dropped
+  std::size_t max_frames_waiting = 3;  // a stereo pair arriving while this many wait for the smoother is dropped
   std::size_t max_sweeps_waiting = 2;  // a sweep arriving while this many wait to be mapped is dropped
 };
 

@@ -9,7 +9,6 @@ namespace {
 YamlFields graph_yaml_fields(loop::GlobalPoseGraphConfig& c) {
   return {yaml_value("odometry_sigma_m", c.odometry_sigma_m), yaml_value("odometry_sigma_rad", c.odometry_sigma_rad),
           yaml_value("degenerate_sigma", c.degenerate_sigma), yaml_value("tilt_sigma_rad", c.tilt_sigma_rad),
-          yaml_value("vio_rotation_sigma_rad_per_sqrt_s", c.vio_rotation_sigma_rad_per_sqrt_s),
           yaml_value("loop_loss_scale", c.loop_loss_scale), yaml_value("max_iterations", c.max_iterations),
           yaml_value("anchor_spacing", c.anchor_spacing), yaml_value("max_anchors", c.max_anchors)};
 }
@@ -53,8 +52,6 @@ void validate_graph_config(const loop::GlobalPoseGraphConfig& c, const std::stri
   positive(c.loop_loss_scale, "loop_loss_scale");
   if (!(c.degenerate_sigma >= 0)) throw InputError(path, "'loop_closure.graph.degenerate_sigma' must be >= 0");
   if (!(c.tilt_sigma_rad >= 0)) throw InputError(path, "'loop_closure.graph.tilt_sigma_rad' must be >= 0");
-  if (!(c.vio_rotation_sigma_rad_per_sqrt_s >= 0))
-    throw InputError(path, "'loop_closure.graph.vio_rotation_sigma_rad_per_sqrt_s' must be >= 0");
   if (c.max_iterations < 1) throw InputError(path, "'loop_closure.graph.max_iterations' must be at least 1");
   if (c.anchor_spacing < 1) throw InputError(path, "'loop_closure.graph.anchor_spacing' must be at least 1");
   if (c.max_anchors < 2) throw InputError(path, "'loop_closure.graph.max_anchors' must be at least 2");
