@@ -273,13 +273,16 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
     realtime.emplace(summary.start_t_ns, config, calib, &*result.realtime);
   }
   RealtimeContext* const realtime_ptr = realtime ? &*realtime : nullptr;
+  // Offline a full queue makes the reader wait. Live, the reader must not wait: the overload policy bounds the
+  // pairs and sweeps, and the room left is for the IMU samples and pose updates between them (seconds of them).
+  const std::size_t queue_capacity = realtime ? config.realtime.queue_capacity : kDefaultStageCapacity;
   // The modules, downstream first so that they outlive the upstream ones that feed them.
   const bool with_vio = config.mode != RunMode::kLidarOnly;
   std::optional<LidarSide> lidar_side;
   std::optional<Stage<LidarMessage>> lidar;
   if (config.mode != RunMode::kVio) {
     lidar_side.emplace(calib, config, &result, realtime_ptr);
-    lidar.emplace([&](LidarMessage&& m) { lidar_side->handle(std::move(m)); }, config.threads);
+    lidar.emplace([&](LidarMessage&& m) { lidar_side->handle(std::move(m)); }, config.threads, queue_capacity);
   }
   std::optional<SmootherSide> smoother_side;
   std::optional<Stage<VioMessage>> smoother;
@@ -287,9 +290,9 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
   std::optional<Stage<FrontendMessage>> frontend;
   if (with_vio) {
     smoother_side.emplace(calib, config, &result, lidar ? &*lidar : nullptr, realtime_ptr);
-    smoother.emplace([&](VioMessage&& m) { smoother_side->handle(std::move(m)); }, config.threads);
+    smoother.emplace([&](VioMessage&& m) { smoother_side->handle(std::move(m)); }, config.threads, queue_capacity);
     frontend_side.emplace(calib, config, &result, &*smoother);
-    frontend.emplace([&](FrontendMessage&& m) { frontend_side->handle(std::move(m)); }, config.threads);
+    frontend.emplace([&](FrontendMessage&& m) { frontend_side->handle(std::move(m)); }, config.threads, queue_capacity);
   }
   const auto failed = [&] {
     return (frontend && frontend->failed()) || (smoother && smoother->failed()) || (lidar && lidar->failed());

@@ -15,6 +15,9 @@ struct RealtimeConfig {
   double speed = 0.0;                  // > 0: real-time mode at this speed; 0: offline, as fast as possible
   std::size_t max_frames_waiting = 3;  // a stereo pair arriving while this many wait for the smoother is dropped
   std::size_t max_sweeps_waiting = 2;  // a sweep arriving while this many wait to be mapped is dropped
+  // Messages each module's queue holds before the reader would wait (offline: 256, stage.h). At 3x the LiDAR side gets
+  // 600 pose updates a second; a loop correction with its map rebuild must not stall the reader behind them.
+  std::size_t queue_capacity = 16384;
 };
 
 // Maps sensor time to wall time from the first event on: wall(t) = start + (t - t_first) / speed.

@@ -14,11 +14,14 @@
 
 namespace vilslam {
 
+// Messages waiting in a stage before push() blocks, unless the stage is given another capacity.
+constexpr std::size_t kDefaultStageCapacity = 256;
+
 template <typename Message>
 class Stage {
  public:
   // threaded: run handle() on a thread of its own; capacity: messages waiting before push() blocks.
-  Stage(std::function<void(Message&&)> handle, bool threaded, std::size_t capacity = 256)
+  Stage(std::function<void(Message&&)> handle, bool threaded, std::size_t capacity = kDefaultStageCapacity)
       : handle_(std::move(handle)), capacity_(capacity) {
     if (threaded) worker_ = std::thread([this] { work(); });
   }
