@@ -1,7 +1,6 @@
 #include "pipeline/offline_runner.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <deque>
 #include <limits>
@@ -47,7 +46,7 @@ using FrontendMessage = std::variant<ImuSample, StereoFrame, LidarScan>;
 struct RealtimeContext {
   RealtimeContext(TimeNs first_t_ns, const OfflineRunConfig& config, const RigCalibration& calib,
                   RealtimeStats* stats_out)
-      : clock(first_t_ns, config.realtime.speed),
+      : clock(first_t_ns, config.realtime.speed), load(config.realtime),
         live(calib.imu, Vec3(0, 0, -config.vio.smoother.gravity_m_s2)), stats(stats_out) {}
   SensorClock clock;
   PipelineLoad load;
@@ -100,7 +99,7 @@ class LidarSide {
       realtime_->stats->lidar_pose_latency_ms.push_back(realtime_->clock.since_ms(result_->lidar[latency_counted_].t_ns));
     }
     const std::size_t done = result_->lidar.size() + lidar_->unmapped_scans() - lidar_->waiting_scans();
-    realtime_->load.sweeps -= done - sweeps_done_;
+    realtime_->load.sweeps.done(done - sweeps_done_);
     sweeps_done_ = done;
   }
 
@@ -161,7 +160,7 @@ class SmootherSide {
       vio_.add_frame(pending_.front());
       result_->smoother_ms.push_back(elapsed_ms(start));
       pending_.pop_front();
-      if (realtime_) --realtime_->load.frames;
+      if (realtime_) realtime_->load.frames.done();
     }
   }
 
@@ -272,7 +271,6 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
     result.realtime->speed = config.realtime.speed;
     realtime.emplace(summary.start_t_ns, config, calib, &*result.realtime);
   }
-  RealtimeContext* const realtime_ptr = realtime ? &*realtime : nullptr;
   // Offline a full queue makes the reader wait. Live, the reader must not wait: the overload policy bounds the
   // pairs and sweeps, and the room left is for the IMU samples and pose updates between them (seconds of them).
   const std::size_t queue_capacity = realtime ? config.realtime.queue_capacity : kDefaultStageCapacity;
@@ -281,7 +279,7 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
   std::optional<LidarSide> lidar_side;
   std::optional<Stage<LidarMessage>> lidar;
   if (config.mode != RunMode::kVio) {
-    lidar_side.emplace(calib, config, &result, realtime_ptr);
+    lidar_side.emplace(calib, config, &result, realtime ? &*realtime : nullptr);
     lidar.emplace([&](LidarMessage&& m) { lidar_side->handle(std::move(m)); }, config.threads, queue_capacity);
   }
   std::optional<SmootherSide> smoother_side;
@@ -289,7 +287,7 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
   std::optional<FrontendSide> frontend_side;
   std::optional<Stage<FrontendMessage>> frontend;
   if (with_vio) {
-    smoother_side.emplace(calib, config, &result, lidar ? &*lidar : nullptr, realtime_ptr);
+    smoother_side.emplace(calib, config, &result, lidar ? &*lidar : nullptr, realtime ? &*realtime : nullptr);
     smoother.emplace([&](VioMessage&& m) { smoother_side->handle(std::move(m)); }, config.threads, queue_capacity);
     frontend_side.emplace(calib, config, &result, &*smoother);
     frontend.emplace([&](FrontendMessage&& m) { frontend_side->handle(std::move(m)); }, config.threads, queue_capacity);
@@ -299,22 +297,8 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
   };
 
   // Real-time mode: the overload policy drops a stereo pair or a sweep when too many wait already.
-  enum class Arrival { kStereoPair, kSweep };
-  const auto admit = [&](Arrival arrival) {
-    if (!realtime) return true;
-    const bool sweep = arrival == Arrival::kSweep;
-    std::atomic<std::size_t>& waiting = sweep ? realtime->load.sweeps : realtime->load.frames;
-    const std::size_t max_waiting = sweep ? config.realtime.max_sweeps_waiting : config.realtime.max_frames_waiting;
-    std::size_t& dropped = sweep ? result.realtime->dropped_sweeps : result.realtime->dropped_frames;
-    if (waiting >= max_waiting) {
-      ++dropped;
-      return false;
-    }
-    ++waiting;
-    return true;
-  };
   const auto push_sweep = [&](LidarScan&& scan) {
-    if (lidar && !admit(Arrival::kSweep)) return;
+    if (realtime && lidar && !realtime->load.sweeps.admit()) return;
     if (frontend) frontend->push(std::move(scan));
     else if (lidar) lidar->push(std::move(scan));
   };
@@ -363,7 +347,7 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
           if constexpr (std::is_same_v<T, StereoFrame>) {
             last_frame_t_ns = data.t_ns + calib.cam_time_offset_ns;
             ++frames_read;
-            if (frontend && admit(Arrival::kStereoPair)) frontend->push(std::move(data));
+            if (frontend && (!realtime || realtime->load.frames.admit())) frontend->push(std::move(data));
           }
           if constexpr (std::is_same_v<T, LidarScan>) {
             if (realtime && lidar) held_sweeps.push_back(std::move(data));
@@ -374,6 +358,10 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
     if ((with_vio && last_frame_handed_over) || failed()) break;
   }
   if (realtime && !failed()) release_until(held_sweeps.empty() ? last_t_ns : held_sweeps.back().end_t_ns());
+  if (realtime) {
+    result.realtime->dropped_frames = realtime->load.frames.dropped();
+    result.realtime->dropped_sweeps = realtime->load.sweeps.dropped();
+  }
   if (frontend) frontend->finish();
   if (smoother) {
     smoother->finish();

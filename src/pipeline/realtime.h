@@ -43,11 +43,37 @@ class SensorClock {
   Clock::time_point start_;
 };
 
+// The overload policy for one kind of arrival (stereo pairs or sweeps): admitted while fewer than max_waiting
+// of them wait in the pipeline. admit() runs on the reader's thread, done() on the module's that handled them.
+class ArrivalGate {
+ public:
+  explicit ArrivalGate(std::size_t max_waiting) : max_waiting_(max_waiting) {}
+
+  // false (and one more dropped) when max_waiting already wait.
+  bool admit() {
+    if (waiting_ >= max_waiting_) {
+      ++dropped_;
+      return false;
+    }
+    ++waiting_;
+    return true;
+  }
+  void done(std::size_t count = 1) { waiting_ -= count; }
+  std::size_t dropped() const { return dropped_; }
+
+ private:
+  std::size_t max_waiting_;
+  std::atomic<std::size_t> waiting_{0};
+  std::size_t dropped_ = 0;  // the reader's thread only
+};
+
 // Stereo pairs and sweeps in the pipeline: released by the reader, not yet handled by the smoother (pairs) or
-// the mapper (sweeps). Read by the reader's overload policy, updated from the modules' threads.
+// the mapper (sweeps).
 struct PipelineLoad {
-  std::atomic<std::size_t> frames{0};
-  std::atomic<std::size_t> sweeps{0};
+  explicit PipelineLoad(const RealtimeConfig& config)
+      : frames(config.max_frames_waiting), sweeps(config.max_sweeps_waiting) {}
+  ArrivalGate frames;
+  ArrivalGate sweeps;
 };
 
 }  // namespace vilslam
