@@ -19,6 +19,7 @@ struct Options {
   std::string imu;
   bool report = false;
   bool overwrite = false;
+  std::string lidar;
 };
 
 vilslam::cli::Command reg("simulate", "Simulate a scenario as a stereo + IMU + LiDAR dataset with ground truth",
@@ -42,11 +43,14 @@ vilslam::cli::Command reg("simulate", "Simulate a scenario as a stereo + IMU + L
   app.add_option("--imu", o->imu, "Use this real IMU stream (EuRoC imu0/data.csv) and its timestamps")
       ->check(CLI::ExistingFile)
       ->needs(trajectory);
+  app.add_option("--lidar", o->lidar, "LiDAR model, replacing the config's lidar section (docs/sim_lidar.md)")
+      ->check(CLI::IsMember({"vlp16", "hesai128", "mid360"}));
   app.add_flag("--report", o->report, "Print a table of the sequence and write DIR/report.json");
   app.add_flag("--overwrite", o->overwrite, "Replace an existing output folder");
   return [o]() {
     using namespace vilslam::sim;
-    const SimConfig config = o->config.empty() ? SimConfig{} : load_sim_config(o->config);
+    SimConfig config = o->config.empty() ? SimConfig{} : load_sim_config(o->config);
+    if (!o->lidar.empty()) config.lidar = lidar_sensor(o->lidar);
     SimulateRequest request;
     request.scenario = parse_scenario(o->scenario);
     if (!o->trajectory.empty() && request.scenario != Scenario::kRoom)

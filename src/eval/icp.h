@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "common/lie.h"
-#include "eval/point_index.h"
+#include "common/point_index.h"
 
 namespace vilslam::eval {
 

@@ -7,7 +7,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "eval/point_index.h"
+#include "common/point_index.h"
 #include "eval/stats.h"
 
 namespace vilslam::eval {

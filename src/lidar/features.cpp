@@ -123,11 +123,31 @@ void select_in_sector(RingPoints& ring, int begin, int end, const FeatureConfig&
 
 }  // namespace
 
-FeatureScan extract_features(const LidarScan& scan, const RingConfig& ring_config, const FeatureConfig& config) {
+FeatureMethod resolve_feature_method(const LidarScan& scan, const RingConfig& ring_config, FeatureMethod method) {
+  if (method != FeatureMethod::kAuto) return method;
+  constexpr double kMinFractionOnRings = 0.7;
+  return scan.has_ring || fraction_on_rings(scan, ring_config) >= kMinFractionOnRings ? FeatureMethod::kRings
+                                                                                       : FeatureMethod::kNeighbourhood;
+}
+
+FeatureScan extract_features(const LidarScan& scan, const RingConfig& ring_config, const FeatureConfig& given) {
+  if (resolve_feature_method(scan, ring_config, given.method) == FeatureMethod::kNeighbourhood) {
+    return extract_neighbourhood_features(scan, given.neighbourhood, given.range_noise_sigma_m, ring_config.min_range_m,
+                                          ring_config.max_range_m);
+  }
   FeatureScan features;
   features.t_ns = scan.t_ns;
-  const int w = config.half_window;
-  for (const std::vector<std::uint32_t>& indices : assign_rings(scan, ring_config)) {
+  const int w = given.half_window;
+  const Rings rings = assign_rings(scan, ring_config);
+  // Beyond reference_rings rings the per-sector counts shrink in proportion (at least one of each).
+  FeatureConfig config = given;
+  const int num_rings = static_cast<int>(rings.size());
+  if (num_rings > config.reference_rings) {
+    const auto scaled = [&](int count) { return std::max(1, count * config.reference_rings / num_rings); };
+    config.max_edges_per_sector = scaled(config.max_edges_per_sector);
+    config.max_surfaces_per_sector = scaled(config.max_surfaces_per_sector);
+  }
+  for (const std::vector<std::uint32_t>& indices : rings) {
     const int n = static_cast<int>(indices.size());
     if (n < 2 * w + 2) continue;
     RingPoints ring = gather(scan, indices);

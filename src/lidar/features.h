@@ -1,15 +1,29 @@
 #pragma once
 // LOAM feature extraction (Zhang & Singh 2014, Sec. V-A): per ring, the smoothness of each point over its
 // neighbours along the ring picks sharp edge points and flat surface points, spread evenly over sectors.
+// A scan without ring structure (a non-repetitive sensor) takes its features from point neighbourhoods
+// instead (neighbourhood_features.h).
 #include <vector>
 
 #include "common/lie.h"
 #include "common/types.h"
+#include "lidar/neighbourhood_features.h"
 #include "lidar/ring_assignment.h"
 
 namespace vilslam::lidar {
 
+enum class FeatureMethod {
+  kAuto,           // rings when the scan has a ring field or its elevations fall on the configured rings
+  kRings,          // LOAM along rings (from the ring field, else from elevation)
+  kNeighbourhood,  // point neighbourhoods, for scans without rings
+};
+
 struct FeatureConfig {
+  FeatureMethod method = FeatureMethod::kAuto;
+  // With more rings than this the per-sector counts shrink in proportion (a 128-beam sensor takes a quarter
+  // per ring), so that a sweep gives no more features than a sensor of this many rings.
+  int reference_rings = 32;
+  NeighbourhoodFeatureConfig neighbourhood;
   int half_window = 5;              // neighbours on each side along the ring for the smoothness
   int sectors_per_ring = 6;         // each ring is split into this many equal sub-regions
   int max_edges_per_sector = 20;
@@ -39,6 +53,10 @@ struct FeatureScan {
   std::vector<FeaturePoint> edges;
   std::vector<FeaturePoint> surfaces;
 };
+
+// The method `auto` resolves to for this scan: rings when it has a ring field, or when at least 70 % of its
+// points lie within a quarter ring spacing of a configured ring elevation (uniform elevations give 50 %).
+FeatureMethod resolve_feature_method(const LidarScan& scan, const RingConfig& ring_config, FeatureMethod method);
 
 FeatureScan extract_features(const LidarScan& scan, const RingConfig& ring_config, const FeatureConfig& config);
 

@@ -1,5 +1,8 @@
 #include "lidar/lidar_config.h"
 
+#include <algorithm>
+#include <iterator>
+
 #include "common/error.h"
 
 namespace vilslam::lidar {
@@ -20,6 +23,32 @@ YamlField loss_field(RobustLoss& loss) {
   return f;
 }
 
+YamlField method_field(FeatureMethod& method) {
+  static const char* const kNames[] = {"auto", "rings", "neighbourhood"};
+  YamlField f;
+  f.key = "method";
+  f.read = [&method](const YAML::Node& node, const std::string& file, const std::string& key_path) {
+    const std::string name = node.as<std::string>();
+    const auto* it = std::find(std::begin(kNames), std::end(kNames), name);
+    if (it == std::end(kNames)) {
+      throw InputError(file, "'" + key_path + "' must be auto, rings or neighbourhood", node.Mark().line + 1);
+    }
+    method = static_cast<FeatureMethod>(it - std::begin(kNames));
+  };
+  f.write = [&method]() { return YAML::Node(kNames[static_cast<int>(method)]); };
+  return f;
+}
+
+YamlFields neighbourhood_fields(NeighbourhoodFeatureConfig& c) {
+  return {yaml_value("num_neighbours", c.num_neighbours), yaml_value("max_radius_per_range", c.max_radius_per_range),
+          yaml_value("surface_max_noise_sigmas", c.surface_max_noise_sigmas),
+          yaml_value("min_surface_spread_ratio", c.min_surface_spread_ratio),
+          yaml_value("edge_min_noise_sigmas", c.edge_min_noise_sigmas),
+          yaml_value("edge_min_curvature", c.edge_min_curvature), yaml_value("azimuth_cells", c.azimuth_cells),
+          yaml_value("elevation_cells", c.elevation_cells), yaml_value("max_edges_per_cell", c.max_edges_per_cell),
+          yaml_value("max_surfaces_per_cell", c.max_surfaces_per_cell)};
+}
+
 YamlFields voxel_fields(VoxelMapConfig& c) {
   return {yaml_value("voxel_size_m", c.voxel_size_m), yaml_value("min_point_spacing_m", c.min_point_spacing_m),
           yaml_value("max_points_per_voxel", c.max_points_per_voxel), yaml_value("max_distance_m", c.max_distance_m)};
@@ -36,7 +65,8 @@ YamlFields lidar_yaml_fields(LidarConfig& c) {
       yaml_section("rings", {yaml_value("num_rings", r.num_rings), yaml_value("min_elevation_deg", r.min_elevation_deg),
                              yaml_value("max_elevation_deg", r.max_elevation_deg),
                              yaml_value("min_range_m", r.min_range_m), yaml_value("max_range_m", r.max_range_m)}),
-      yaml_section("features", {yaml_value("half_window", f.half_window),
+      yaml_section("features", {method_field(f.method), yaml_value("reference_rings", f.reference_rings),
+                                yaml_value("half_window", f.half_window),
                                 yaml_value("sectors_per_ring", f.sectors_per_ring),
                                 yaml_value("max_edges_per_sector", f.max_edges_per_sector),
                                 yaml_value("max_surfaces_per_sector", f.max_surfaces_per_sector),
@@ -45,7 +75,8 @@ YamlFields lidar_yaml_fields(LidarConfig& c) {
                                 yaml_value("edge_noise_sigmas", f.edge_noise_sigmas),
                                 yaml_value("surface_max_smoothness", f.surface_max_smoothness),
                                 yaml_value("occlusion_jump_ratio", f.occlusion_jump_ratio),
-                                yaml_value("max_neighbor_gap_ratio", f.max_neighbor_gap_ratio)}),
+                                yaml_value("max_neighbor_gap_ratio", f.max_neighbor_gap_ratio),
+                                yaml_section("neighbourhood", neighbourhood_fields(f.neighbourhood))}),
       yaml_section("map", {yaml_section("edges", voxel_fields(c.map.edges)),
                            yaml_section("surfaces", voxel_fields(c.map.surfaces))}),
       yaml_section("registration",
@@ -74,6 +105,12 @@ void validate_lidar_config(const LidarConfig& c, const std::string& source) {
       c.map.edges.voxel_size_m <= 0.0 || c.map.surfaces.voxel_size_m <= 0.0) {
     throw InputError(source, "rings.num_rings, features.half_window, features.sectors_per_ring and map voxel_size_m "
                              "must be positive");
+  }
+  const NeighbourhoodFeatureConfig& n = c.features.neighbourhood;
+  if (c.features.reference_rings < 1 || n.num_neighbours < 4 || n.azimuth_cells < 1 || n.elevation_cells < 1 ||
+      n.max_edges_per_cell < 0 || n.max_surfaces_per_cell < 0 || !(n.max_radius_per_range > 0.0)) {
+    throw InputError(source, "features.reference_rings and the neighbourhood counts, cells and radius must be "
+                             "positive (num_neighbours at least 4)");
   }
 }
 

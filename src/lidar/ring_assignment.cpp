@@ -10,13 +10,25 @@ namespace {
 
 constexpr double kRadToDeg = 180.0 / M_PI;
 
+double ring_spacing_deg(const RingConfig& config) {
+  return config.num_rings > 1 ? (config.max_elevation_deg - config.min_elevation_deg) / (config.num_rings - 1) : 1.0;
+}
+
+// The point's elevation in ring spacings above the lowest ring.
+double ring_coordinate(const LidarPoint& p, const RingConfig& config) {
+  const double elevation_deg = std::atan2(p.z, std::hypot(p.x, p.y)) * kRadToDeg;
+  return (elevation_deg - config.min_elevation_deg) / ring_spacing_deg(config);
+}
+
 // Ring index from elevation, or -1 when the beam falls outside the configured fan (by over half a spacing).
 int ring_from_elevation(const LidarPoint& p, const RingConfig& config) {
-  const double elevation_deg = std::atan2(p.z, std::hypot(p.x, p.y)) * kRadToDeg;
-  const double spacing_deg =
-      config.num_rings > 1 ? (config.max_elevation_deg - config.min_elevation_deg) / (config.num_rings - 1) : 1.0;
-  const long ring = std::lround((elevation_deg - config.min_elevation_deg) / spacing_deg);
+  const long ring = std::lround(ring_coordinate(p, config));
   return ring >= 0 && ring < config.num_rings ? static_cast<int>(ring) : -1;
+}
+
+bool in_range(const LidarPoint& p, const RingConfig& config) {
+  const double range_sq = double(p.x) * p.x + double(p.y) * p.y + double(p.z) * p.z;
+  return range_sq >= config.min_range_m * config.min_range_m && range_sq <= config.max_range_m * config.max_range_m;
 }
 
 // Orders one ring by (azimuth, index). A spinning sensor delivers a ring already sorted up to one wrap-around,
@@ -32,14 +44,15 @@ void sort_by_azimuth(std::vector<std::pair<float, std::uint32_t>>& ring) {
 }  // namespace
 
 Rings assign_rings(const LidarScan& scan, const RingConfig& config) {
-  std::vector<std::vector<std::pair<float, std::uint32_t>>> by_ring(static_cast<std::size_t>(config.num_rings));
-  const double min_sq = config.min_range_m * config.min_range_m;
-  const double max_sq = config.max_range_m * config.max_range_m;
+  int num_rings = config.num_rings;
+  if (scan.has_ring) {
+    for (const LidarPoint& p : scan.points) num_rings = std::max(num_rings, p.ring + 1);
+  }
+  std::vector<std::vector<std::pair<float, std::uint32_t>>> by_ring(static_cast<std::size_t>(num_rings));
   for (std::uint32_t i = 0; i < scan.points.size(); ++i) {
     const LidarPoint& p = scan.points[i];
-    const double range_sq = double(p.x) * p.x + double(p.y) * p.y + double(p.z) * p.z;
-    if (!(range_sq >= min_sq && range_sq <= max_sq)) continue;
-    const int ring = scan.has_ring ? (p.ring < config.num_rings ? p.ring : -1) : ring_from_elevation(p, config);
+    if (!in_range(p, config)) continue;
+    const int ring = scan.has_ring ? p.ring : ring_from_elevation(p, config);
     if (ring < 0) continue;
     by_ring[static_cast<std::size_t>(ring)].emplace_back(std::atan2(p.y, p.x), i);
   }
@@ -50,6 +63,17 @@ Rings assign_rings(const LidarScan& scan, const RingConfig& config) {
     for (const auto& entry : by_ring[r]) rings[r].push_back(entry.second);
   }
   return rings;
+}
+
+double fraction_on_rings(const LidarScan& scan, const RingConfig& config) {
+  std::size_t in = 0, on = 0;
+  for (const LidarPoint& p : scan.points) {
+    if (!in_range(p, config)) continue;
+    ++in;
+    const double c = ring_coordinate(p, config);
+    on += ring_from_elevation(p, config) >= 0 && std::abs(c - std::round(c)) <= 0.25;
+  }
+  return in > 0 ? static_cast<double>(on) / static_cast<double>(in) : 0.0;
 }
 
 }  // namespace vilslam::lidar

@@ -19,9 +19,14 @@ struct RingConfig {
   double max_range_m = 120.0;
 };
 
-// Indices into scan.points, one vector per ring, each sorted by azimuth (ties by index).
+// Indices into scan.points, one vector per ring, each sorted by azimuth (ties by index). With a ring field
+// the scan's own ring numbers count (as many rings as its highest ring + 1, at least config.num_rings).
 using Rings = std::vector<std::vector<std::uint32_t>>;
 
 Rings assign_rings(const LidarScan& scan, const RingConfig& config);
+
+// The share of the scan's points (within the range limits) whose elevation lies within a quarter ring
+// spacing of a ring of config: near 1 for the configured spinning sensor, 0.5 for uniform elevations.
+double fraction_on_rings(const LidarScan& scan, const RingConfig& config);
 
 }  // namespace vilslam::lidar

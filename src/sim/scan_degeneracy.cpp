@@ -9,10 +9,10 @@ namespace vilslam::sim {
 ScanDegeneracy analyze_scan_degeneracy(const World& world, const LidarSimConfig& config, const SE3& T_W_L) {
   check_lidar_config(config);
   ScanDegeneracy out;
-  const int azimuths = num_azimuths(config);
-  for (int k = 0; k < azimuths; ++k) {
-    for (int ring = 0; ring < config.num_rings; ++ring) {
-      const Vec3 dir_W = T_W_L.quat() * beam_direction_L(config, ring, k);
+  const int columns = num_columns(config), beams = beams_per_column(config);
+  for (int k = 0; k < columns; ++k) {
+    for (int beam = 0; beam < beams; ++beam) {
+      const Vec3 dir_W = T_W_L.quat() * beam_direction_L(config, beam, k);
       const auto hit = world.raycast(T_W_L.translation(), dir_W, config.max_range_m);
       if (!hit || hit->range_m < config.min_range_m) continue;
       const Vec3 p = hit->range_m * dir_W;

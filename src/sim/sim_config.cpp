@@ -6,6 +6,7 @@
 #include <set>
 
 #include "common/error.h"
+#include "sim/lidar_beams.h"
 
 namespace vilslam::sim {
 namespace {
@@ -95,9 +96,19 @@ void read_imu(const Reader& r, const YAML::Node& n, SimConfig& c) {
 }
 
 void read_lidar(const Reader& r, const YAML::Node& n, SimConfig& c) {
-  r.check_keys(n, {"num_rings", "min_elevation_deg", "max_elevation_deg", "azimuth_step_deg", "rate_hz",
+  r.check_keys(n, {"sensor", "num_rings", "min_elevation_deg", "max_elevation_deg", "azimuth_step_deg", "rate_hz",
                    "min_range_m", "max_range_m", "range_noise_sigma_m", "position_in_imu_m"},
                "lidar");
+  // The sensor model first: it sets every field, which the other keys may then override.
+  std::string sensor;
+  r.get(n, "sensor", sensor);
+  if (!sensor.empty()) {
+    try {
+      c.lidar = lidar_sensor(sensor);
+    } catch (const std::invalid_argument& e) {
+      r.fail(std::string("lidar.sensor: ") + e.what());
+    }
+  }
   r.get(n, "num_rings", c.lidar.num_rings);
   r.get(n, "min_elevation_deg", c.lidar.min_elevation_deg);
   r.get(n, "max_elevation_deg", c.lidar.max_elevation_deg);
@@ -153,12 +164,17 @@ void read_faults(const Reader& r, const YAML::Node& n, SimConfig& c) {
 void validate(const Reader& r, const SimConfig& c) {
   const bool ok = c.camera.width_px > 0 && c.camera.height_px > 0 && c.camera.fx > 0 && c.camera.fy > 0 &&
                   c.camera.rate_hz > 0 && c.stereo_baseline_m > 0 && c.imu.noise.rate_hz > 0 && c.lidar.rate_hz > 0 &&
-                  c.lidar.num_rings > 0 && c.lidar.azimuth_step_deg > 0 && c.motion.cruise_speed_m_s > 0 &&
+                  c.motion.cruise_speed_m_s > 0 &&
                   c.outdoor_speed_m_s > 0 && c.motion.ramp_s > 0 && c.outdoor_ramp_s > 0 &&
                   c.motion.control_spacing_m > 0 && c.outdoor_control_spacing_m > 0 &&
                   c.pose_spline.knot_spacing_s > 0 && c.render.motion_blur_samples >= 1 && c.preview_duration_s > 0 &&
                   c.model_spacing_m > 0 && c.parallel_batch > 0;
   if (!ok) r.fail("rates, sizes, speeds, spacings and counts must be positive");
+  try {
+    check_lidar_config(c.lidar);
+  } catch (const std::invalid_argument& e) {
+    r.fail(e.what());
+  }
 }
 
 }  // namespace

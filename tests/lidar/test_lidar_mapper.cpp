@@ -38,7 +38,8 @@ struct Sequence {
   std::vector<LidarScan> scans;
 };
 
-Sequence simulate(sim::Scenario scenario, double start_s, int num_scans, double spin_rad_s = 0.0) {
+Sequence simulate(sim::Scenario scenario, double start_s, int num_scans, double spin_rad_s = 0.0,
+                  const sim::LidarSimConfig& lidar = {}) {
   const sim::World& w = world(scenario);
   const auto motion = std::make_shared<sim::RouteMotion>(
       w.route_W(), sim::route_motion_config(sim::SimConfig{}, scenario));
@@ -49,7 +50,7 @@ Sequence simulate(sim::Scenario scenario, double start_s, int num_scans, double 
   };
   const auto T_W_L = [seq_T_W_I = seq.T_W_I](TimeNs t) { return seq_T_W_I(t) * T_I_L(); };
   for (int k = 0; k < num_scans; ++k) {
-    seq.scans.push_back(sim::simulate_sweep(w, sim::LidarSimConfig{}, t0 + k * kScanPeriodNs, T_W_L, 100 + k));
+    seq.scans.push_back(sim::simulate_sweep(w, lidar, t0 + k * kScanPeriodNs, T_W_L, 100 + k));
   }
   return seq;
 }
@@ -108,6 +109,31 @@ TEST(LidarMapper, TracksTheHighbayWithAndWithoutPrior) {
   EXPECT_LT(lidar_only.max_translation_m, 0.1);
   EXPECT_LT(lidar_only.max_rotation_deg, 1.5);
   EXPECT_LE(with_truth.degenerate_scans, 1);
+}
+
+// The same route with the 128-beam and the non-repetitive sensor: the mapper takes the ring count from
+// the ring field (hesai128) or its features from point neighbourhoods (mid360, no rings) on its own.
+TEST(LidarMapper, TracksTheHighbayWithEverySensorModel) {
+  for (const std::string name : {"hesai128", "mid360"}) {
+    const sim::LidarSimConfig lidar = sim::lidar_sensor(name);
+    const Sequence seq = simulate(sim::Scenario::kHighbay, 5.0, 12, 0.0, lidar);
+    const FeatureMethod method = resolve_feature_method(seq.scans[0], RingConfig{}, FeatureMethod::kAuto);
+    EXPECT_EQ(method, name == "mid360" ? FeatureMethod::kNeighbourhood : FeatureMethod::kRings) << name;
+    const auto drifting = [&seq](TimeNs t) {
+      const double s = ns_to_s(t) - 5.0;
+      return SE3(so3::exp(Vec3(0, 0, s * M_PI / 180)), Vec3(0.0, 0.05 * s, 0.0)) * seq.T_W_I(t);
+    };
+    const Errors with_drift = run(seq, LidarMapperConfig{}, drifting);
+    const Errors lidar_only = run(seq, LidarMapperConfig{}, nullptr);
+    std::cout << name << " highbay 1.2 s: drifting prior " << with_drift.max_translation_m << " m / "
+              << with_drift.max_rotation_deg << " deg; LiDAR-only " << lidar_only.max_translation_m << " m / "
+              << lidar_only.max_rotation_deg << " deg; mean time per scan " << with_drift.mean_time_ms << " ms\n";
+    EXPECT_LT(with_drift.max_translation_m, 0.05) << name;
+    EXPECT_LT(with_drift.max_rotation_deg, 0.5) << name;
+    EXPECT_LT(lidar_only.max_translation_m, 0.1) << name;
+    EXPECT_LT(lidar_only.max_rotation_deg, 1.5) << name;
+    EXPECT_EQ(with_drift.degenerate_scans, 0) << name;
+  }
 }
 
 TEST(LidarMapper, DewarpingWithThePriorMatters) {

@@ -57,6 +57,23 @@ TEST(SimConfig, ReadsOverridesAndFaults) {
   EXPECT_FALSE(in_fault(c.faults.imu_gaps, s_to_ns(3.0)));
 }
 
+TEST(SimConfig, SensorModelSetsTheLidarAndKeysOverrideIt) {
+  const SimConfig c = load_sim_config(write_yaml("lidar: {sensor: mid360, max_range_m: 40}\n"));
+  EXPECT_EQ(c.lidar.pattern, LidarPattern::kNonRepetitive);
+  EXPECT_EQ(c.lidar.min_elevation_deg, -7.0);
+  EXPECT_EQ(c.lidar.max_range_m, 40.0);
+  EXPECT_EQ(rig_calibration(c).lidar.num_rings, 0);  // no rings
+  EXPECT_EQ(load_sim_config(write_yaml("lidar: {sensor: hesai128}\n")).lidar.num_rings, 128);
+  try {
+    load_sim_config(write_yaml("lidar: {sensor: hdl64}\n"));
+    FAIL() << "an unknown sensor must be rejected";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown LiDAR model 'hdl64'"), std::string::npos) << e.what();
+  }
+  // A beam list that does not match the ring count.
+  EXPECT_THROW(load_sim_config(write_yaml("lidar: {sensor: hesai128, num_rings: 64}\n")), InputError);
+}
+
 TEST(SimConfig, RejectsBadInput) {
   EXPECT_THROW(load_sim_config("/nonexistent/sim.yaml"), InputError);
   EXPECT_THROW(load_sim_config(write_yaml("camera: {fxx: 300}\n")), InputError);

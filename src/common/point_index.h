@@ -7,7 +7,7 @@
 
 #include <nanoflann.hpp>
 
-namespace vilslam::eval {
+namespace vilslam {
 
 class PointIndex {
  public:
@@ -44,4 +44,4 @@ class PointIndex {
   std::unique_ptr<Tree> tree_;
 };
 
-}  // namespace vilslam::eval
+}  // namespace vilslam

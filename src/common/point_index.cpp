@@ -1,8 +1,8 @@
-#include "eval/point_index.h"
+#include "common/point_index.h"
 
 #include <stdexcept>
 
-namespace vilslam::eval {
+namespace vilslam {
 
 PointIndex::PointIndex(std::vector<Eigen::Vector3f> points) : cloud_{std::move(points)} {
   if (cloud_.points.empty()) throw std::invalid_argument("cannot index an empty point set");
@@ -24,4 +24,4 @@ std::vector<PointIndex::Neighbour> PointIndex::nearest_k(const Eigen::Vector3f& 
   return out;
 }
 
-}  // namespace vilslam::eval
+}  // namespace vilslam
