@@ -31,6 +31,12 @@ TEST(RunConfig, ShippedRigConfigsLoad) {
   EXPECT_EQ(c.lidar.lidar.rings.num_rings, 16);
   EXPECT_TRUE(c.lidar.dewarp);
   EXPECT_TRUE(c.lidar.lidar.registration.remap_degenerate_directions);
+  const OfflineRunConfig hesai = load_run_config(kConfigDir + "run_hesai128.yaml");
+  EXPECT_EQ(hesai.lidar.lidar.features.method, lidar::FeatureMethod::kRings);
+  const OfflineRunConfig mid360 = load_run_config(kConfigDir + "run_mid360.yaml");
+  EXPECT_EQ(mid360.lidar.lidar.features.method, lidar::FeatureMethod::kNeighbourhood);
+  EXPECT_EQ(mid360.lidar.lidar.rings.max_range_m, 70.0);
+  EXPECT_THROW(load_run_config(write_file("lidar_mapper:\n  features:\n    method: rays\n")), InputError);
 }
 
 TEST(RunConfig, SectionsReachTheirModulesAndMissingOnesKeepDefaults) {
