@@ -40,7 +40,8 @@ YamlField method_field(FeatureMethod& method) {
 }
 
 YamlFields neighbourhood_fields(NeighbourhoodFeatureConfig& c) {
-  return {yaml_value("num_neighbours", c.num_neighbours), yaml_value("max_radius_per_range", c.max_radius_per_range),
+  return {yaml_value("num_neighbours", c.num_neighbours), yaml_value("candidate_stride", c.candidate_stride),
+          yaml_value("max_radius_per_range", c.max_radius_per_range),
           yaml_value("surface_max_noise_sigmas", c.surface_max_noise_sigmas),
           yaml_value("min_surface_spread_ratio", c.min_surface_spread_ratio),
           yaml_value("edge_min_noise_sigmas", c.edge_min_noise_sigmas),
@@ -107,7 +108,7 @@ void validate_lidar_config(const LidarConfig& c, const std::string& source) {
                              "must be positive");
   }
   const NeighbourhoodFeatureConfig& n = c.features.neighbourhood;
-  if (c.features.reference_rings < 1 || n.num_neighbours < 4 || n.azimuth_cells < 1 || n.elevation_cells < 1 ||
+  if (c.features.reference_rings < 1 || n.num_neighbours < 4 || n.candidate_stride < 1 || n.azimuth_cells < 1 || n.elevation_cells < 1 ||
       n.max_edges_per_cell < 0 || n.max_surfaces_per_cell < 0 || !(n.max_radius_per_range > 0.0)) {
     throw InputError(source, "features.reference_rings and the neighbourhood counts, cells and radius must be "
                              "positive (num_neighbours at least 4)");

@@ -111,7 +111,9 @@ FeatureScan extract_neighbourhood_features(const LidarScan& scan, const Neighbou
   if (static_cast<int>(points.size()) < config.num_neighbours) return features;
   const PointIndex index(points);
   std::vector<Local> locals(points.size());
-  tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) {
+  const std::size_t stride = static_cast<std::size_t>(config.candidate_stride);
+  tbb::parallel_for(std::size_t(0), (points.size() + stride - 1) / stride, [&](std::size_t c) {
+    const std::size_t i = c * stride;
     locals[i] = classify(index, i, config, range_noise_sigma_m);
     locals[i].cell = angular_cell(index.points()[i], config);
   });

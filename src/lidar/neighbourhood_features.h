@@ -11,6 +11,9 @@ struct FeatureScan;
 
 struct NeighbourhoodFeatureConfig {
   int num_neighbours = 16;           // k of the k-nearest-neighbour scatter (the point itself included)
+  // Every candidate_stride-th point in scan order is a candidate (its neighbours come from all points): the
+  // cells keep a few thousand features of a 20,000-point sweep, so a third of the points is plenty.
+  int candidate_stride = 3;
   double max_radius_per_range = 0.1; // a scatter whose k-th neighbour is farther than this x range is skipped
   // Thickness = sqrt of the smallest scatter eigenvalue, against the sensor's range noise sigma
   // (FeatureConfig::range_noise_sigma_m): a surface is thinner than surface_max_noise_sigmas sigmas and
@@ -19,7 +22,7 @@ struct NeighbourhoodFeatureConfig {
   double surface_max_noise_sigmas = 1.5;
   double min_surface_spread_ratio = 3.0;
   double edge_min_noise_sigmas = 1.6;
-  double edge_min_curvature = 0.02;
+  double edge_min_curvature = 0.05;
   int azimuth_cells = 36;            // features are spread over azimuth x elevation cells of the sensor
   int elevation_cells = 4;
   int max_edges_per_cell = 6;
