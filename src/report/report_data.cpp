@@ -40,6 +40,7 @@ void add_trajectories(const ReportOptions& options, ReportData& data) {
     }
     data.trajectories.push_back(std::move(drawn));
   }
+  if (data.trajectories.empty()) throw InputError(run.path, "every trajectory file is empty");
   data.t0_ns = data.trajectories.front().T_W_B.front().t_ns;
   if (options.gt_path.empty()) data.notes.push_back("no ground truth given (--gt): paths are drawn in their own worlds, without errors");
   for (std::size_t i = 0; i < data.trajectories.size(); ++i) {
