@@ -30,7 +30,10 @@ void add_trajectories(const ReportOptions& options, ReportData& data) {
     DrawnTrajectory drawn{spec.name, spec.file, *spec.T_W_B, std::nullopt};
     if (!options.gt_path.empty()) {
       const Trajectory gt = read_groundtruth(options.gt_path, spec.frame);
-      if (!data.gt_T_W_B) data.gt_T_W_B = gt;
+      if (!data.gt_T_W_B) {
+        data.gt_T_W_B = gt;
+        data.gt_frame = spec.frame == GroundTruthFrame::kImu ? "IMU" : "LiDAR";
+      }
       try {
         drawn.errors = trajectory_errors(*spec.T_W_B, gt, spec.align);
         drawn.T_W_B = drawn.errors->est_in_gt_world;
@@ -42,7 +45,8 @@ void add_trajectories(const ReportOptions& options, ReportData& data) {
   }
   if (data.trajectories.empty()) throw InputError(run.path, "every trajectory file is empty");
   data.t0_ns = data.trajectories.front().T_W_B.front().t_ns;
-  if (options.gt_path.empty()) data.notes.push_back("no ground truth given (--gt): paths are drawn in their own worlds, without errors");
+  if (options.gt_path.empty())
+    data.notes.push_back("no ground truth given (--gt): paths are drawn in their own worlds, without errors");
   for (std::size_t i = 0; i < data.trajectories.size(); ++i) {
     if (data.trajectories[i].file != "vio_camera.tum") data.events_on = i;
   }

@@ -40,7 +40,8 @@ struct TimingHistogram {
 struct ReportData {
   RunDir run;
   std::string gt_path;
-  std::optional<Trajectory> gt_T_W_B;  // the ground truth drawn (IMU frame, or LiDAR frame for a LiDAR-only run)
+  std::optional<Trajectory> gt_T_W_B;  // the ground truth drawn: of the first estimate's body frame
+  std::string gt_frame;                // "IMU" | "LiDAR"
   std::vector<DrawnTrajectory> trajectories;
   std::optional<std::size_t> events_on;  // index of the trajectory degenerate sweeps and loops are drawn on
   std::vector<TimingHistogram> histograms;

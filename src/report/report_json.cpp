@@ -153,6 +153,7 @@ std::string report_json(const ReportData& data, const ReportOptions& options) {
   json.end_array();
   if (data.gt_T_W_B) {
     json.key("ground_truth").begin_object();
+    json.key("frame").value(data.gt_frame);
     write_path(json, *data.gt_T_W_B, data.t0_ns, options.max_path_points);
     json.end_object();
   }

@@ -79,7 +79,8 @@ function equalScale(datasets, widthPx, heightPx) {
 function pathDatasets(data, a, b) {
   const sets = [];
   if (data.ground_truth)
-    sets.push({ label: 'ground truth', data: projected(f32(data.ground_truth.xyz), a, b), borderColor: COLORS.gt,
+    sets.push({ label: 'ground truth (' + data.ground_truth.frame + ')',
+                data: projected(f32(data.ground_truth.xyz), a, b), borderColor: COLORS.gt,
                 borderDash: [6, 4], borderWidth: 2, pointRadius: 0, showLine: true, order: 5 });
   for (const t of data.trajectories)
     sets.push({ label: t.name, data: projected(f32(t.xyz), a, b), borderColor: COLORS[t.name], borderWidth: 1.6,
@@ -101,8 +102,8 @@ function pathDatasets(data, a, b) {
 const legendWithoutBlanks = { labels: { filter: (item) => item.text !== '' } };
 
 function pathsSection(root, data) {
-  const frame = data.ground_truth ? 'in the ground truth\'s world (each estimate aligned as `vilslam eval` does)'
-                                  : 'in the estimator\'s world';
+  const frame = data.ground_truth ? 'in the ground truth\'s world (each estimate aligned as `vilslam eval` does; ' +
+                                    'VIO poses are of the IMU, LiDAR poses of the LiDAR)' : 'in the estimator\'s world';
   const s = section(root, 'Trajectory', 'Top and side views ' + frame + ', both at equal scale. Degenerate sweeps ' +
                     'and loop closures are drawn on the ' + (data.events.on || '–') + ' path; a loop joins the two ' +
                     'poses it relates.');
@@ -156,9 +157,10 @@ function timingSection(root, data) {
   const table = el('table', {}, s);
   const head = el('tr', {}, table);
   for (const c of ['series', 'events', 'median ms', 'p95 ms', 'max ms']) el('th', { text: c }, head);
-  for (const r of t.summaries) {
+  for (const r of t.summaries.filter((row) => row.frames > 0)) {
     const tr = el('tr', {}, table);
-    for (const v of [r.series, r.frames, fmt(r.median_ms, 2), fmt(r.p95_ms, 2), fmt(r.max_ms, 2)]) el('td', { text: String(v) }, tr);
+    for (const v of [r.series, r.frames, fmt(r.median_ms, 2), fmt(r.p95_ms, 2), fmt(r.max_ms, 2)])
+      el('td', { text: String(v) }, tr);
   }
 }
 
@@ -200,7 +202,9 @@ function mapSection(root, data) {
   cloud.setAttribute('position', new THREE.BufferAttribute(xyz, 3));
   cloud.setAttribute('color', new THREE.BufferAttribute(colors, 3));
   cloud.computeBoundingSphere();
-  scene.add(new THREE.Points(cloud, new THREE.PointsMaterial({ size: 2, sizeAttenuation: false, vertexColors: THREE.VertexColors !== undefined ? THREE.VertexColors : true })));
+  // three.js r111 takes THREE.VertexColors here (later releases: true).
+  const material = new THREE.PointsMaterial({ size: 2, sizeAttenuation: false, vertexColors: THREE.VertexColors });
+  scene.add(new THREE.Points(cloud, material));
   const path = new THREE.BufferGeometry();
   path.setAttribute('position', new THREE.BufferAttribute(f32(m.path.xyz), 3));
   scene.add(new THREE.Line(path, new THREE.LineBasicMaterial({ color: 0xffffff })));
