@@ -1,7 +1,8 @@
 #pragma once
 // A hand-made `vilslam run --out` folder for the report's command tests (no simulation): 20 s on a circle of
 // radius 5 m at 10 Hz, the ground truth as a TUM file, a VIO estimate in a yawed and shifted world with a
-// growing error, LiDAR odometry and loop-closed poses, one loop, every 20th sweep degenerate, and timings.
+// growing error, LiDAR odometry and loop-closed poses, one loop, every 20th sweep degenerate, and the timings
+// of a real-time run.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -56,11 +57,14 @@ inline void write_synthetic_run(const std::filesystem::path& dir, const std::fil
   samples << "series,ms\n";
   for (int i = 0; i < kSyntheticPoses; ++i) samples << "frontend," << 5 + i % 10 << "\n";
   for (int i = 0; i < kSyntheticPoses; ++i) samples << "lidar_mapping," << 20 + i % 7 << "\n";
+  for (int i = 0; i < kSyntheticPoses; ++i) samples << "imu_pose_latency," << 0.5 + 0.01 * (i % 13) << "\n";
   std::ofstream(dir / "timings.json")
       << "{\n  \"mode\": \"vil\",\n  \"data_s\": 19.9,\n  \"run_wall_s\": 8.5,\n"
       << "  \"frontend\": {\"frames\": 200, \"median_ms\": 9, \"p95_ms\": 14, \"max_ms\": 14},\n"
       << "  \"lidar_mapping\": {\"frames\": 200, \"median_ms\": 23, \"p95_ms\": 26, \"max_ms\": 26},\n"
-      << "  \"loops_accepted\": 1\n}\n";
+      << "  \"loops_accepted\": 1,\n"
+      << "  \"realtime\": {\"speed\": 1.0, \"dropped_sweeps\": 0,\n"
+      << "    \"imu_pose_latency\": {\"frames\": 200, \"median_ms\": 0.56, \"p95_ms\": 0.62, \"max_ms\": 0.62}}\n}\n";
 }
 
 }  // namespace vilslam::test

@@ -86,7 +86,9 @@ TEST_F(ReportCli, EventsAndTimingsAreAllThere) {
   EXPECT_EQ(number_after(data, "degenerate"), test::kSyntheticPoses / test::kSyntheticDegenerateEvery);
   EXPECT_EQ(number_after(data, "from_t_s"), 0.5);  // the loop from pose 5 to pose 195, 0.1 s apart
   EXPECT_NEAR(number_after(data, "to_t_s"), 19.5, 1e-12);
-  for (const char* series : {"frontend", "lidar_mapping"}) {
+  EXPECT_EQ(number_after(data, "realtime_speed"), 1.0);
+  EXPECT_EQ(number_after(data, "median_ms", data.find("\"series\": \"imu_pose_latency\"")), 0.56);
+  for (const char* series : {"frontend", "lidar_mapping", "imu_pose_latency"}) {
     const std::size_t at = data.find("\"series\": \"" + std::string(series) + "\"", data.find("\"histograms\""));
     ASSERT_NE(at, std::string::npos) << series;
     const std::size_t open = data.find('[', at), close = data.find(']', at);
