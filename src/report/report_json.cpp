@@ -88,7 +88,7 @@ void write_timings(JsonWriter& json, const ReportData& data) {
   const RunTimings& t = data.run.timings;
   json.key("timings").begin_object();
   json.key("summaries").begin_array();
-  for (const TimingSummaryRow& row : t.modules) {
+  for (const TimingSummaryRow& row : t.summaries) {
     json.begin_object();
     json.key("series").value(row.series);
     json.key("frames").value(row.frames);

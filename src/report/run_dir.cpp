@@ -87,10 +87,10 @@ RunTimings read_timings(const std::string& path) {
   t.mode = root["mode"].Scalar();
   t.data_s = json_number(root, "data_s", path);
   t.run_wall_s = json_number(root, "run_wall_s", path);
-  read_summaries(root, path, t.modules);
+  read_summaries(root, path, t.summaries);
   if (const YAML::Node realtime = root["realtime"]) {
     t.realtime_speed = json_number(realtime, "speed", path);
-    read_summaries(realtime, path, t.modules);
+    read_summaries(realtime, path, t.summaries);
   }
   return t;
 }

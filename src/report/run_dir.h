@@ -33,7 +33,7 @@ struct RunTimings {
   std::string mode;  // "vio" | "vil" | "lidar-only"
   double data_s = 0, run_wall_s = 0;
   std::optional<double> realtime_speed;      // with --realtime
-  std::vector<TimingSummaryRow> modules;     // every series of timings.json, latencies last
+  std::vector<TimingSummaryRow> summaries;   // every series of timings.json, latencies last
   std::vector<TimingSamples> samples;        // from timing_samples.csv; empty when the file is absent
 };
 
