@@ -37,13 +37,16 @@ void add_trajectories(const ReportOptions& options, ReportData& data) {
       try {
         drawn.errors = trajectory_errors(*spec.T_W_B, gt, spec.align);
         drawn.T_W_B = drawn.errors->est_in_gt_world;
-      } catch (const std::invalid_argument& e) {
-        data.notes.push_back(std::string(spec.file) + ": no errors against the ground truth (" + e.what() + ")");
+      } catch (const std::invalid_argument& e) {  // drawn in its own world it would mislead next to the others
+        data.notes.push_back(std::string(spec.file) + ": left out, not aligned with the ground truth (" + e.what() + ")");
+        continue;
       }
     }
     data.trajectories.push_back(std::move(drawn));
   }
-  if (data.trajectories.empty()) throw InputError(run.path, "every trajectory file is empty");
+  if (data.trajectories.empty())
+    throw InputError(run.path, "no trajectory to draw (empty files, or none aligned with the ground truth " +
+                                   options.gt_path + ")");
   data.t0_ns = data.trajectories.front().T_W_B.front().t_ns;
   if (options.gt_path.empty())
     data.notes.push_back("no ground truth given (--gt): paths are drawn in their own worlds, without errors");

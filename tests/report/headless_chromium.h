@@ -38,7 +38,7 @@ struct BrowserPage {
 inline std::string chromium_command(const std::string& chromium, const std::filesystem::path& profile,
                                     const std::string& window_size, const std::string& action) {
   return chromium + " --headless=new --no-sandbox --disable-gpu --use-angle=swiftshader --enable-unsafe-swiftshader" +
-         " --no-first-run --hide-scrollbars --user-data-dir=" + profile.string() +
+         " --disable-dev-shm-usage --no-first-run --hide-scrollbars --user-data-dir=" + profile.string() +
          " --enable-logging=stderr --v=0 --window-size=" + window_size + " " + action;
 }
 

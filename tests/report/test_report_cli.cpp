@@ -159,6 +159,12 @@ TEST_F(ReportCli, BadInputExitsTwoWithoutOutput) {
   expect_refused(run_.string() + " --model " + gt_.string(), "--model");
   expect_refused(run_.string() + " --map " + (dir_ / "absent.ply").string(), "absent.ply");
 
+  // A ground truth of other times: no estimate can be aligned with it.
+  Trajectory later = read_trajectory(gt_.string(), TrajectoryFormat::kTum);
+  for (TimedPose& p : later) p.t_ns += 1'000'000'000'000;
+  write_trajectory((dir_ / "later.tum").string(), later, TrajectoryFormat::kTum);
+  expect_refused(run_.string() + " --gt " + (dir_ / "later.tum").string(), "run: no trajectory to draw");
+
   const std::string lidar = test::read_file_bytes(run_ / "lidar.tum");
   std::ofstream(run_ / "lidar.tum") << "# t x y z qx qy qz qw\n1.0 0 0 0 0 0 0 1\n2.0 0 zero 0 0 0 0 1\n";
   expect_refused(run_.string(), "lidar.tum:3");
