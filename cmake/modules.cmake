@@ -17,3 +17,15 @@ function(vilslam_module name)
   endif()
   set(VILSLAM_MODULES ${VILSLAM_MODULES} ${target} PARENT_SCOPE)
 endfunction()
+
+# vilslam_embed_text(<target> <symbol> <file>)
+# Compiles <file>'s text into <target> as `std::string_view vilslam::embedded::<symbol>()`, regenerated when
+# the file changes (cmake/embed_text.cmake).
+function(vilslam_embed_text target symbol file)
+  set(out ${CMAKE_BINARY_DIR}/embedded/${symbol}.cpp)
+  add_custom_command(OUTPUT ${out}
+    COMMAND ${CMAKE_COMMAND} -DIN=${file} -DOUT=${out} -DSYMBOL=${symbol} -P ${CMAKE_SOURCE_DIR}/cmake/embed_text.cmake
+    DEPENDS ${file} ${CMAKE_SOURCE_DIR}/cmake/embed_text.cmake
+    COMMENT "Embedding ${file}")
+  target_sources(${target} PRIVATE ${out})
+endfunction()

@@ -16,17 +16,47 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void write_timing(JsonWriter& json, const std::string& name, const std::vector<double>& samples_ms) {
-  const TimingSummary s = summarize_timings(samples_ms);
-  json.key(name).begin_object();
-  json.key("frames").value(static_cast<std::uint64_t>(s.count));
-  json.key("median_ms").value(s.median_ms);
-  json.key("p95_ms").value(s.p95_ms);
-  json.key("max_ms").value(s.max_ms);
-  json.end_object();
+// One module's or one output's per-event times, ms; group: "module" (top level of timings.json), "loop"
+// (with the loop closure's counts) or "latency" (inside "realtime").
+struct TimingSeries {
+  std::string name;
+  std::string group;
+  std::vector<double> samples_ms;
+};
+
+std::vector<TimingSeries> timing_series(const OfflineRunResult& r) {
+  std::vector<double> lidar_ms;
+  for (const lidar::LidarMappingResult& m : r.lidar) lidar_ms.push_back(m.time_ms);
+  std::vector<TimingSeries> series = {
+      {"frontend", "module", r.frontend_ms}, {"smoother", "module", r.smoother_ms}, {"lidar_mapping", "module", lidar_ms}};
+  if (r.loop) {
+    series.push_back({"key_frame", "loop", r.loop->key_frame_ms});
+    series.push_back({"loop_detection_and_constraints", "loop", r.loop->detection_ms});
+    series.push_back({"loop_correction", "loop", r.loop->correction_ms});
+  }
+  if (r.realtime) {
+    series.push_back({"imu_pose_latency", "latency", r.realtime->imu_pose_latency_ms});
+    series.push_back({"camera_state_latency", "latency", r.realtime->camera_state_latency_ms});
+    series.push_back({"lidar_pose_latency", "latency", r.realtime->lidar_pose_latency_ms});
+  }
+  return series;
 }
 
-std::string timings_json(RunMode mode, const OfflineRunResult& r) {
+// The summaries of one group's series, each as "name": {frames, median_ms, p95_ms, max_ms}.
+void write_timings(JsonWriter& json, const std::vector<TimingSeries>& series, const std::string& group) {
+  for (const TimingSeries& t : series) {
+    if (t.group != group) continue;
+    const TimingSummary s = summarize_timings(t.samples_ms);
+    json.key(t.name).begin_object();
+    json.key("frames").value(static_cast<std::uint64_t>(s.count));
+    json.key("median_ms").value(s.median_ms);
+    json.key("p95_ms").value(s.p95_ms);
+    json.key("max_ms").value(s.max_ms);
+    json.end_object();
+  }
+}
+
+std::string timings_json(RunMode mode, const OfflineRunResult& r, const std::vector<TimingSeries>& series) {
   JsonWriter json;
   json.begin_object();
   json.key("mode").value(run_mode_name(mode));
@@ -39,11 +69,7 @@ std::string timings_json(RunMode mode, const OfflineRunResult& r) {
   const auto [min_it, max_it] = std::minmax_element(r.matches_per_frame.begin(), r.matches_per_frame.end());
   json.key("matches_min").value(min_it == r.matches_per_frame.end() ? 0 : *min_it);
   json.key("matches_max").value(max_it == r.matches_per_frame.end() ? 0 : *max_it);
-  write_timing(json, "frontend", r.frontend_ms);
-  write_timing(json, "smoother", r.smoother_ms);
-  std::vector<double> lidar_ms;
-  for (const lidar::LidarMappingResult& m : r.lidar) lidar_ms.push_back(m.time_ms);
-  write_timing(json, "lidar_mapping", lidar_ms);
+  write_timings(json, series, "module");
   json.key("lidar_unmapped_scans").value(static_cast<std::uint64_t>(r.unmapped_scans));
   if (r.loop) {
     json.key("key_frames").value(static_cast<std::uint64_t>(r.loop->key_frames));
@@ -51,9 +77,7 @@ std::string timings_json(RunMode mode, const OfflineRunResult& r) {
     const auto accepted = std::count_if(r.loop->candidates.begin(), r.loop->candidates.end(),
                                         [](const loop::LoopCandidateRecord& c) { return c.accepted(); });
     json.key("loops_accepted").value(static_cast<std::uint64_t>(accepted));
-    write_timing(json, "key_frame", r.loop->key_frame_ms);
-    write_timing(json, "loop_detection_and_constraints", r.loop->detection_ms);
-    write_timing(json, "loop_correction", r.loop->correction_ms);
+    write_timings(json, series, "loop");
   }
   if (r.realtime) {
     json.key("realtime").begin_object();
@@ -61,13 +85,21 @@ std::string timings_json(RunMode mode, const OfflineRunResult& r) {
     json.key("dropped_stereo_pairs").value(static_cast<std::uint64_t>(r.realtime->dropped_frames));
     json.key("dropped_sweeps").value(static_cast<std::uint64_t>(r.realtime->dropped_sweeps));
     json.key("max_release_lag_ms").value(r.realtime->max_release_lag_ms);
-    write_timing(json, "imu_pose_latency", r.realtime->imu_pose_latency_ms);
-    write_timing(json, "camera_state_latency", r.realtime->camera_state_latency_ms);
-    write_timing(json, "lidar_pose_latency", r.realtime->lidar_pose_latency_ms);
+    write_timings(json, series, "latency");
     json.end_object();
   }
   json.end_object();
   return json.str();
+}
+
+// timing_samples.csv: every sample behind the summaries of timings.json, one row each: series,ms (in event order).
+std::string timing_samples_csv(const std::vector<TimingSeries>& series) {
+  std::ostringstream out;
+  out << std::setprecision(9) << "series,ms\n";
+  for (const TimingSeries& t : series) {
+    for (double ms : t.samples_ms) out << t.name << ',' << ms << '\n';
+  }
+  return out.str();
 }
 
 // The estimated camera-IMU time offset (t_imu = t_cam + offset) and how well it explains the rotations.
@@ -131,7 +163,9 @@ void write_run_outputs(const std::string& out_dir, const OfflineRunConfig& confi
     }
     write_file_atomic((partial / "degeneracy.csv").string(), degeneracy_csv(result.lidar));
   }
-  write_file_atomic((partial / "timings.json").string(), timings_json(mode, result));
+  const std::vector<TimingSeries> series = timing_series(result);
+  write_file_atomic((partial / "timings.json").string(), timings_json(mode, result, series));
+  write_file_atomic((partial / "timing_samples.csv").string(), timing_samples_csv(series));
   if (result.time_offset) write_file_atomic((partial / "time_offset.json").string(), time_offset_json(*result.time_offset));
   write_file_atomic((partial / "config.yaml").string(), run_config_yaml(config));
   fs::remove_all(out);

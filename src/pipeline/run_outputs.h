@@ -1,8 +1,9 @@
 #pragma once
 // Writes an offline run's results into an output folder: vio_camera.tum and vio_imu.tum (vio, vil),
 // lidar.tum and degeneracy.csv (vil, lidar-only), with loop closure (vil) lidar_global.tum,
-// lidar_final.tum, loops.csv and loop_candidates.csv, timings.json, and config.yaml (the effective run config,
-// pipeline/run_config.h: `vilslam run --config DIR/config.yaml` repeats the run).
+// lidar_final.tum, loops.csv and loop_candidates.csv, timings.json and timing_samples.csv (the samples it
+// summarizes), and config.yaml (the effective run config, pipeline/run_config.h: `vilslam run --config
+// DIR/config.yaml` repeats the run).
 // The folder is assembled as DIR.partial and renamed into place, so DIR is never half-written.
 #include <string>
 

@@ -40,7 +40,7 @@ bool run_and_kill(const std::string& args, double delay_s) {
 }
 
 // A complete output: the reference's files (a folder's, recursively, or one file), identical but for a run's
-// timings (a complete JSON).
+// timings (a complete JSON and a complete csv).
 void expect_complete(const fs::path& out, const fs::path& reference, const std::string& when) {
   if (fs::is_regular_file(reference)) {
     EXPECT_EQ(test::read_file_bytes(out), test::read_file_bytes(reference)) << when;
@@ -54,6 +54,8 @@ void expect_complete(const fs::path& out, const fs::path& reference, const std::
     const std::string text = test::read_file_bytes(out / relative);
     if (relative == "timings.json") {
       EXPECT_TRUE(text.size() > 2 && text.substr(text.size() - 2) == "}\n") << when << ": " << relative;
+    } else if (relative == "timing_samples.csv") {
+      EXPECT_TRUE(text.rfind("series,ms\n", 0) == 0 && text.back() == '\n') << when << ": " << relative;
     } else {
       EXPECT_EQ(text, test::read_file_bytes(entry.path())) << when << ": " << relative;
     }
