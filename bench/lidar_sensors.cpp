@@ -1,4 +1,4 @@
-// LiDAR mapping cost per sweep for each simulated sensor model (docs/sim_lidar.md) at the same place of
+// LiDAR mapping cost per sweep for each simulated sensor model (docs/simulator.md) at the same place of
 // the highbay: feature extraction of the new sweep (rings for the VLP-16 and the 128-beam sensor, point
 // neighbourhoods for the non-repetitive one) plus its scan-to-map registration against the previous
 // sweep's features, from the previous pose (the walking motion of 0.1 s left to the registration).

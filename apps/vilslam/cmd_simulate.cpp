@@ -43,7 +43,7 @@ vilslam::cli::Command reg("simulate", "Simulate a scenario as a stereo + IMU + L
   app.add_option("--imu", o->imu, "Use this real IMU stream (EuRoC imu0/data.csv) and its timestamps")
       ->check(CLI::ExistingFile)
       ->needs(trajectory);
-  app.add_option("--lidar", o->lidar, "LiDAR model, replacing the config's lidar section (docs/sim_lidar.md)")
+  app.add_option("--lidar", o->lidar, "LiDAR model, replacing the config's lidar section (docs/simulator.md)")
       ->check(CLI::IsMember({"vlp16", "hesai128", "mid360"}));
   app.add_flag("--report", o->report, "Print a table of the sequence and write DIR/report.json");
   app.add_flag("--overwrite", o->overwrite, "Replace an existing output folder");

@@ -1,4 +1,4 @@
-// The LiDAR models of the simulator, each following a real sensor's data sheet (docs/sim_lidar.md).
+// The LiDAR models of the simulator, each following a real sensor's data sheet (docs/simulator.md).
 #include <stdexcept>
 
 #include "sim/lidar_sim.h"

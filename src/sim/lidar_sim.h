@@ -43,7 +43,7 @@ struct LidarSimConfig {
   double range_noise_sigma_m = 0.02;
 };
 
-// The sensors the simulator models (docs/sim_lidar.md): "vlp16" (the default config), "hesai128" (128
+// The sensors the simulator models (docs/simulator.md): "vlp16" (the default config), "hesai128" (128
 // spinning beams, non-uniform: 0.125 deg apart around the horizon, like a Hesai Pandar128) and "mid360"
 // (non-repetitive, 360 x 59 deg, like a Livox Mid-360). Throws std::invalid_argument on another name.
 LidarSimConfig lidar_sensor(const std::string& name);
