@@ -36,6 +36,7 @@ TEST(RunConfig, ShippedRigConfigsLoad) {
   const OfflineRunConfig mid360 = load_run_config(kConfigDir + "run_mid360.yaml");
   EXPECT_EQ(mid360.lidar.lidar.features.method, lidar::FeatureMethod::kNeighbourhood);
   EXPECT_EQ(mid360.lidar.lidar.rings.max_range_m, 70.0);
+  EXPECT_EQ(mid360.lidar.lidar.registration.association.max_plane_point_distance_m, 0.05);
   EXPECT_THROW(load_run_config(write_file("lidar_mapper:\n  features:\n    method: rays\n")), InputError);
 }
 
