@@ -45,7 +45,7 @@ struct FeatureConfig {
 struct FeaturePoint {
   Vec3 p_L = Vec3::Zero();
   float t_offset_s = 0.0f;  // since the scan's t_ns
-  float smoothness = 0.0f;
+  float smoothness = 0.0f;  // LOAM eq. (1); neighbourhood features: curvature (edges), thickness in m (surfaces)
 };
 
 struct FeatureScan {
