@@ -86,13 +86,17 @@ Errors run(const Sequence& seq, const LidarMapperConfig& config, const std::func
   return e;
 }
 
-TEST(LidarMapper, TracksTheHighbayWithAndWithoutPrior) {
-  const Sequence seq = simulate(sim::Scenario::kHighbay, 5.0, 20);
-  // The prior drifts 5 cm/s sideways and 1 deg/s in yaw: the LiDAR must correct it.
-  const auto drifting = [&seq](TimeNs t) {
+// The truth drifting 5 cm/s sideways and 1 deg/s in yaw from 5 s on: the LiDAR must correct it.
+std::function<SE3(TimeNs)> drifting_prior(const Sequence& seq) {
+  return [&seq](TimeNs t) {
     const double s = ns_to_s(t) - 5.0;
     return SE3(so3::exp(Vec3(0, 0, s * M_PI / 180)), Vec3(0.0, 0.05 * s, 0.0)) * seq.T_W_I(t);
   };
+}
+
+TEST(LidarMapper, TracksTheHighbayWithAndWithoutPrior) {
+  const Sequence seq = simulate(sim::Scenario::kHighbay, 5.0, 20);
+  const auto drifting = drifting_prior(seq);
   const Errors with_truth = run(seq, LidarMapperConfig{}, seq.T_W_I);
   const Errors with_drift = run(seq, LidarMapperConfig{}, drifting);
   const Errors lidar_only = run(seq, LidarMapperConfig{}, nullptr);
@@ -119,10 +123,7 @@ TEST(LidarMapper, TracksTheHighbayWithEverySensorModel) {
     const Sequence seq = simulate(sim::Scenario::kHighbay, 5.0, 12, 0.0, lidar);
     const FeatureMethod method = resolve_feature_method(seq.scans[0], RingConfig{}, FeatureMethod::kAuto);
     EXPECT_EQ(method, name == "mid360" ? FeatureMethod::kNeighbourhood : FeatureMethod::kRings) << name;
-    const auto drifting = [&seq](TimeNs t) {
-      const double s = ns_to_s(t) - 5.0;
-      return SE3(so3::exp(Vec3(0, 0, s * M_PI / 180)), Vec3(0.0, 0.05 * s, 0.0)) * seq.T_W_I(t);
-    };
+    const auto drifting = drifting_prior(seq);
     const Errors with_drift = run(seq, LidarMapperConfig{}, drifting);
     const Errors lidar_only = run(seq, LidarMapperConfig{}, nullptr);
     std::cout << name << " highbay 1.2 s: drifting prior " << with_drift.max_translation_m << " m / "
