@@ -39,6 +39,9 @@ void validate_calibration(const RigCalibration& calib, const std::string& source
   for (double v : {n.gyro_noise_density, n.gyro_random_walk, n.accel_noise_density, n.accel_random_walk, n.rate_hz}) {
     if (!std::isfinite(v) || v <= 0) throw InputError(source, "IMU noise parameters and rate must be positive");
   }
+  if (calib.has_lidar && !(std::isfinite(calib.lidar.rate_hz) && calib.lidar.rate_hz > 0)) {
+    throw InputError(source, "lidar rate_hz must be positive");
+  }
 }
 
 }  // namespace vilslam

@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "io/dataset_index.h"
+#include "lidar/azimuth_times.h"
 #include "lidar/dewarp.h"
 
 namespace vilslam::map {
@@ -111,6 +112,7 @@ MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory
     }
     LidarScan scan = load_scan(index, i);
     scan.t_ns += offset_ns;
+    if (config.dewarp) lidar::fill_missing_point_times(scan, index.calibration.lidar);  // as the run did
     if (scan.points.empty() || !covers(T_W_L, scan.t_ns, scan.end_t_ns(), max_gap_ns) ||
         (!config.motion.empty() && !covers(config.motion, scan.t_ns, scan.end_t_ns(), max_gap_ns))) {
       ++result.stats.sweeps_skipped;

@@ -1,15 +1,19 @@
 #include "pipeline/lidar_feeder.h"
 
+#include "lidar/azimuth_times.h"
+
 namespace vilslam {
 
 LidarFeeder::LidarFeeder(const lidar::LidarMapperConfig& config, const RigCalibration& calib,
                          const Trajectory* imu_poses, const Trajectory* imu_motion,
                          std::vector<lidar::LidarMappingResult>* results, LoopClosureModule* loop)
-    : mapper_(config, calib.T_I_L), offset_ns_(calib.lidar_time_offset_ns), imu_poses_(imu_poses),
+    : mapper_(config, calib.T_I_L), offset_ns_(calib.lidar_time_offset_ns), lidar_(calib.lidar),
+      dewarp_(config.dewarp), imu_poses_(imu_poses),
       imu_motion_(imu_motion), results_(results), loop_(loop) {}
 
 void LidarFeeder::scan(LidarScan scan) {
   scan.t_ns += offset_ns_;
+  if (dewarp_) lidar::fill_missing_point_times(scan, lidar_);
   if (!imu_poses_) {
     map(scan, {}, {});
     return;

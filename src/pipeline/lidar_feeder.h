@@ -37,6 +37,8 @@ class LidarFeeder {
 
   lidar::LidarMapper mapper_;
   TimeNs offset_ns_;
+  LidarIntrinsics lidar_;  // spinning (rings) and rate: per-point times from the azimuth when a sweep has none
+  bool dewarp_;
   const Trajectory* imu_poses_;
   const Trajectory* imu_motion_;
   std::vector<lidar::LidarMappingResult>* results_;
