@@ -75,6 +75,14 @@ TEST(RigYaml, MissingFieldAndBadValuesNameTheFile) {
   EXPECT_THROW(read_rig_yaml(path.string()), InputError);
   write_text(path, text + "\n  : : [\n");
   EXPECT_THROW(read_rig_yaml(path.string()), InputError);
+  const auto lidar_rate = text.find("rate_hz", text.find("lidar:"));  // per-point times come from it
+  write_text(path, text.substr(0, lidar_rate) + "rate_hz: 0\n" + text.substr(text.find('\n', lidar_rate) + 1));
+  try {
+    read_rig_yaml(path.string());
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("lidar rate_hz must be positive"), std::string::npos) << e.what();
+  }
 }
 
 TEST(RigYaml, EurocConfigEqualsTheDatasetCalibration) {
