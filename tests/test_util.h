@@ -94,12 +94,12 @@ struct CliResult {
   std::string output;  // stdout and stderr together
 };
 
-// Runs the built `vilslam` CLI with the given argument string.
-inline CliResult run_cli(const std::string& args) {
+// Runs a shell command, its output captured.
+inline CliResult run_command(const std::string& command) {
   static int counter = 0;
-  const std::filesystem::path out = process_temp_root() / ("cli_" + std::to_string(counter++) + ".txt");
+  const std::filesystem::path out = process_temp_root() / ("cmd_" + std::to_string(counter++) + ".txt");
   std::filesystem::create_directories(out.parent_path());
-  const std::string cmd = std::string(VILSLAM_CLI) + " " + args + " > " + out.string() + " 2>&1";
+  const std::string cmd = command + " > " + out.string() + " 2>&1";
   const int status = std::system(cmd.c_str());
   CliResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -112,6 +112,9 @@ inline CliResult run_cli(const std::string& args) {
   }
   return r;
 }
+
+// Runs the built `vilslam` CLI with the given argument string.
+inline CliResult run_cli(const std::string& args) { return run_command(std::string(VILSLAM_CLI) + " " + args); }
 
 // Paths of the scalar leaves of a YAML map ("vio.smoother.window_size"), in file order.
 inline std::vector<std::string> yaml_key_paths(const YAML::Node& node, const std::string& prefix = "") {

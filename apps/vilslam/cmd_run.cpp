@@ -6,7 +6,9 @@
 #include <vector>
 
 #include "common/progress.h"
+#include "common/error.h"
 #include "io/dataset.h"
+#include "loop/map_file.h"
 #include "pipeline/offline_runner.h"
 #include "pipeline/run_config.h"
 #include "pipeline/run_outputs.h"
@@ -24,6 +26,7 @@ struct Options {
   std::string out_dir;
   std::string config_path;
   double realtime_speed = 0.0;
+  std::string save_map;
 };
 
 void print_latency(const char* name, const std::vector<double>& samples_ms) {
@@ -83,9 +86,14 @@ vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and writ
                  "Release the data on the wall clock at this speed (1 = live) and measure latencies; output not "
                  "deterministic (docs/pipeline.md)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--save-map", o->save_map,
+                 "Also write the map re-localization needs to this folder (vil with loop closure; docs/formats.md)");
   return [o, bag_args]() {
     OfflineRunConfig config = o->config_path.empty() ? OfflineRunConfig{} : load_run_config(o->config_path);
     config.mode = parse_run_mode(o->mode);
+    if (!o->save_map.empty() && (config.mode != RunMode::kVil || !config.loop.enabled)) {
+      throw InputError("--save-map", "a map needs --mode vil with loop closure enabled (its key frames)");
+    }
     config.realtime.speed = o->realtime_speed;
     const auto reader = open_dataset(o->dataset, vilslam::cli::dataset_options(*bag_args));
     OfflineRunResult result;
@@ -94,6 +102,18 @@ vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and writ
       result = run_offline(*reader, config, [&progress](double fraction) { progress.update(fraction); });
     }
     write_run_outputs(o->out_dir, config, result);
+    if (!o->save_map.empty()) {
+      loop::SavedMap map;
+      map.rig = reader->calibration();
+      if (result.time_offset) map.rig.cam_time_offset_ns = s_to_ns(result.time_offset->offset_s);
+      map.poses = result.loop->lidar_final;
+      map.key_frames = std::move(result.loop->key_frame_data);
+      map.vocabulary_id = loop::vocabulary_identity(config.vocabulary == "default" ? default_vocabulary_path()
+                                                                                   : config.vocabulary);
+      loop::save_map(o->save_map, map);
+      std::printf("wrote map %s (%zu key frames, %zu poses)\n", o->save_map.c_str(), map.key_frames.size(),
+                  map.poses.size());
+    }
     print_summary(result);
     std::printf("wrote %s\n", o->out_dir.c_str());
     return 0;

@@ -125,6 +125,8 @@ class LoopCloser {
                                                   const std::function<SE3(std::size_t)>& T_W_L_of_pose);
 
   const std::vector<KeyFrame>& key_frames() const { return key_frames_; }
+  // Hands the key frames over (to a saved map) once no more will be added; the closer keeps none.
+  std::vector<KeyFrame> release_key_frames() { return std::move(key_frames_); }
   const LoopClosureConfig& config() const { return config_; }
 
  private:

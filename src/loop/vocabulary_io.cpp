@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "common/binary_io.h"
 #include "common/error.h"
 #include "common/json_writer.h"
 #include "loop/vocabulary.h"
@@ -16,39 +17,9 @@ constexpr char kMagic[] = "VILSLAM_VOCAB";
 constexpr std::size_t kMagicSize = sizeof(kMagic) - 1;
 constexpr std::uint32_t kVersion = 1;
 
-template <typename T>
-void put(std::string& out, const T& value) {
-  out.append(reinterpret_cast<const char*>(&value), sizeof(T));
-}
-
-// Reads fixed-size fields from the file's bytes; running past the end is a truncated file.
-class Reader {
- public:
-  Reader(const std::string& path, const std::string& bytes) : path_(path), bytes_(bytes) {}
-
-  template <typename T>
-  T get(const char* what) {
-    T value;
-    take(&value, sizeof(T), what);
-    return value;
-  }
-  void take(void* dst, std::size_t n, const char* what) {
-    if (bytes_.size() - pos_ < n) fail(std::string("truncated file: ends inside ") + what);
-    std::memcpy(dst, bytes_.data() + pos_, n);
-    pos_ += n;
-  }
-  std::size_t remaining() const { return bytes_.size() - pos_; }
-  [[noreturn]] void fail(const std::string& problem) const { throw InputError(path_, problem); }
-
- private:
-  const std::string& path_;
-  const std::string& bytes_;
-  std::size_t pos_ = 0;
-};
-
 // Structure checks: children lie after their parent and inside the array (a tree, no cycles), only
 // leaves carry words, word ids are 0..W-1 each once, and fan-out respects k.
-void check_tree(const Reader& in, const std::vector<Vocabulary::Node>& nodes, std::size_t num_words, int k) {
+void check_tree(const BinaryReader& in, const std::vector<Vocabulary::Node>& nodes, std::size_t num_words, int k) {
   std::vector<bool> seen(num_words, false);
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const Vocabulary::Node& n = nodes[i];
@@ -75,18 +46,18 @@ void check_tree(const Reader& in, const std::vector<Vocabulary::Node>& nodes, st
 
 void Vocabulary::save(const std::string& path) const {
   std::string out(kMagic, kMagicSize);
-  put(out, kVersion);
-  put(out, static_cast<std::int32_t>(branching_));
-  put(out, static_cast<std::int32_t>(levels_));
-  put(out, static_cast<std::uint32_t>(nodes_.size()));
+  put_binary(out, kVersion);
+  put_binary(out, static_cast<std::int32_t>(branching_));
+  put_binary(out, static_cast<std::int32_t>(levels_));
+  put_binary(out, static_cast<std::uint32_t>(nodes_.size()));
   for (const Node& n : nodes_) {
     out.append(reinterpret_cast<const char*>(n.center.data()), n.center.size());
-    put(out, n.first_child);
-    put(out, n.num_children);
-    put(out, n.word);
+    put_binary(out, n.first_child);
+    put_binary(out, n.num_children);
+    put_binary(out, n.word);
   }
-  put(out, static_cast<std::uint32_t>(idf_.size()));
-  for (double w : idf_) put(out, w);
+  put_binary(out, static_cast<std::uint32_t>(idf_.size()));
+  for (double w : idf_) put_binary(out, w);
   write_file_atomic(path, out);
 }
 
@@ -94,7 +65,7 @@ Vocabulary Vocabulary::load(const std::string& path) {
   std::ifstream file(path, std::ios::binary);
   if (!file) throw InputError(path, "cannot open vocabulary file");
   const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  Reader in(path, bytes);
+  BinaryReader in(path, bytes);
 
   char magic[kMagicSize];
   in.take(magic, kMagicSize, "the magic string");

@@ -138,6 +138,7 @@ std::optional<MapCorrection> LoopClosureModule::take_correction() {
 
 LoopClosureOutput LoopClosureModule::finish() {
   out_.key_frames = closer_ ? closer_->key_frames().size() : 0;
+  if (closer_) out_.key_frame_data = closer_->release_key_frames();
   out_.lidar_final = graph_.size() > 0 ? graph_.trajectory() : Trajectory{};
   if (!corrected_) out_.lidar_final = out_.lidar_global;  // no loop: the odometry is final
   return std::move(out_);

@@ -28,6 +28,7 @@ struct LoopClosureOutput {
   Trajectory lidar_final;     // the final optimized graph: lidar_final.tum
   std::vector<loop::LoopCandidateRecord> candidates;  // every examined candidate, accepted or not
   std::size_t key_frames = 0;
+  std::vector<loop::KeyFrame> key_frame_data;  // the key frames themselves, for a saved map (loop/map_file.h)
   std::vector<double> key_frame_ms;   // key image extraction per key frame
   std::vector<double> detection_ms;   // detection + constraints (LoopCloser::add_and_detect) per key frame
   std::vector<double> correction_ms;  // graph optimization + map rebuild per accepted loop
@@ -56,6 +57,10 @@ class LoopClosureModule {
   void scan_mapped(const lidar::LidarMappingResult& mapped, const lidar::FeatureScan& features_L);
   // The correction LiDAR mapping must apply before its next sweep, once per accepted loop.
   std::optional<MapCorrection> take_correction();
+
+  // Published so far: each mapped sweep's pose with the corrections known then, and the examined candidates.
+  const Trajectory& lidar_global() const { return out_.lidar_global; }
+  const std::vector<loop::LoopCandidateRecord>& candidates() const { return out_.candidates; }
 
   // Fills lidar_final and the counts.
   LoopClosureOutput finish();

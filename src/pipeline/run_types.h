@@ -1,0 +1,72 @@
+#pragma once
+// What a run is configured with and what it produces: shared by the System (pipeline/system.h), which runs the
+// modules, and the offline runner (pipeline/offline_runner.h), which feeds it a dataset.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/types.h"
+#include "frontend/frontend_config.h"
+#include "lidar/lidar_mapper.h"
+#include "loop/global_pose_graph.h"
+#include "loop/loop_closer.h"
+#include "pipeline/loop_closure_module.h"
+#include "pipeline/realtime.h"
+#include "vio/time_offset.h"
+#include "vio/vio.h"
+
+namespace vilslam {
+
+enum class RunMode { kVio, kVil, kLidarOnly };
+
+// "vio" | "vil" | "lidar-only"; throws std::invalid_argument otherwise.
+RunMode parse_run_mode(const std::string& name);
+std::string run_mode_name(RunMode mode);
+
+// The vocabulary shipped in config/ (docs/loop.md).
+std::string default_vocabulary_path();
+
+struct OfflineRunConfig {
+  RunMode mode = RunMode::kVio;
+  FrontendConfig frontend;
+  VioConfig vio;
+  lidar::LidarMapperConfig lidar;
+  loop::LoopClosureConfig loop;         // vil mode only (it needs key images)
+  loop::GlobalPoseGraphConfig graph;
+  std::string vocabulary = "default";   // a vocabulary file, or "default": default_vocabulary_path()
+  TimeOffsetConfig time_offset;          // vio and vil: estimate the camera-IMU time offset before the run
+  bool threads = true;  // the frontend, the smoother and the LiDAR side each on a thread (same output as without)
+  RealtimeConfig realtime;  // speed 0: offline (deterministic); > 0: events on the wall clock (pipeline/realtime.h)
+};
+
+// Real-time mode only: each output's latency (wall time from its measurement's instant to its publication) and
+// what the overload policy dropped.
+struct RealtimeStats {
+  double speed = 0.0;
+  Trajectory live_imu_poses;  // T_W_I published as each IMU sample arrived (pipeline/live_propagator.h)
+  std::vector<double> imu_pose_latency_ms;      // per live IMU-rate pose, from its IMU sample's time
+  std::vector<double> camera_state_latency_ms;  // per optimized camera-rate state, from its stereo pair's time
+  std::vector<double> lidar_pose_latency_ms;    // per mapped sweep, from the sweep's end
+  std::size_t dropped_frames = 0;
+  std::size_t dropped_sweeps = 0;
+  double max_release_lag_ms = 0.0;  // how late the reader released an event (reading it took longer than its slot)
+};
+
+struct OfflineRunResult {
+  Trajectory camera_states;  // T_W_I of every optimized stereo-frame state (IMU clock)
+  Trajectory imu_poses;      // T_W_I propagated at every IMU sample after initialization
+  Trajectory imu_motion;     // T_O_I at the same samples: the same motion without re-anchoring jumps
+  std::vector<int> matches_per_frame;
+  std::vector<double> frontend_ms;  // per stereo frame
+  std::vector<double> smoother_ms;  // per stereo frame (Vio::add_frame)
+  std::size_t imu_samples = 0;
+  std::vector<lidar::LidarMappingResult> lidar;  // one per mapped sweep
+  std::size_t unmapped_scans = 0;  // vil: sweeps no VIO pose covered
+  std::optional<LoopClosureOutput> loop;  // vil: odometry, loop-corrected poses, loop candidates
+  std::optional<TimeOffsetEstimate> time_offset;  // when estimated (config.time_offset.enabled) and observable
+  double data_s = 0;      // time span of the events read (the sensors' time)
+  double run_wall_s = 0;  // wall time of run_offline (data_s / run_wall_s > 1: faster than real time)
+  std::optional<RealtimeStats> realtime;  // when config.realtime.speed > 0
+};
+
+}  // namespace vilslam

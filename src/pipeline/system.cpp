@@ -1,0 +1,311 @@
+#include "pipeline/system.h"
+
+#include <chrono>
+#include <deque>
+#include <limits>
+#include <mutex>
+#include <optional>
+#include <variant>
+
+#include "common/error.h"
+#include "frontend/frontend.h"
+#include "pipeline/lidar_feeder.h"
+#include "pipeline/live_propagator.h"
+#include "pipeline/stage.h"
+
+namespace vilslam {
+namespace {
+
+double elapsed_ms(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// What the LiDAR side receives, in push order: stereo pairs (key images, on the IMU clock), sweeps, and
+// after each IMU sample the IMU-rate poses the VIO published for it (none before initialization).
+struct PosesAdvanced {
+  Trajectory imu_poses;   // T_W_I
+  Trajectory imu_motion;  // T_O_I at the same samples
+};
+using LidarMessage = std::variant<PosesAdvanced, StereoFrame, LidarScan>;
+
+// A stereo pair on the IMU clock with its frontend output.
+struct TrackedFrame {
+  StereoFrame frame;
+  FrontendOutput out;
+};
+using VioMessage = std::variant<ImuSample, TrackedFrame, LidarScan>;
+using FrontendMessage = std::variant<ImuSample, StereoFrame, LidarScan>;
+
+// What the modules share besides their messages: the callbacks, the live propagator (when the IMU-rate pose
+// is wanted) and the overload policy's load (real-time mode only).
+struct Shared {
+  SystemCallbacks callbacks;
+  std::optional<LivePropagator> live;
+  std::optional<PipelineLoad> load;
+};
+
+// LiDAR mapping and loop closure (paper: the LiDAR mapping and loop closure threads). Keeps its own copy of
+// the VIO's IMU-rate poses, grown exactly as the VIO published them, so it never reads the VIO's memory.
+class LidarSide {
+ public:
+  LidarSide(const RigCalibration& calib, const OfflineRunConfig& config, OfflineRunResult* result, Shared* shared)
+      : result_(result), shared_(shared) {
+    const bool with_vio = config.mode == RunMode::kVil;  // the LiDAR side exists only in vil and lidar-only
+    if (with_vio) {
+      std::shared_ptr<const Vocabulary> vocabulary;
+      if (config.loop.enabled) vocabulary = std::make_shared<const Vocabulary>(Vocabulary::load(
+            config.vocabulary == "default" ? default_vocabulary_path() : config.vocabulary));
+      loop_.emplace(config.loop, config.graph, vocabulary, calib, config.frontend, config.lidar.lidar, &imu_motion_);
+    }
+    lidar_.emplace(config.lidar, calib, with_vio ? &imu_poses_ : nullptr, with_vio ? &imu_motion_ : nullptr,
+                   &result->lidar, loop_ ? &*loop_ : nullptr);
+  }
+
+  void handle(LidarMessage&& message) {
+    if (auto* poses = std::get_if<PosesAdvanced>(&message)) {
+      imu_poses_.insert(imu_poses_.end(), poses->imu_poses.begin(), poses->imu_poses.end());
+      imu_motion_.insert(imu_motion_.end(), poses->imu_motion.begin(), poses->imu_motion.end());
+      lidar_->poses_advanced();
+    } else if (auto* frame = std::get_if<StereoFrame>(&message)) {
+      if (loop_) loop_->stereo(*frame);
+    } else {
+      lidar_->scan(std::move(std::get<LidarScan>(message)));
+    }
+    publish();
+  }
+
+  void finish() {
+    lidar_->poses_advanced();
+    publish();
+    result_->unmapped_scans = lidar_->unmapped_scans();
+    if (loop_) result_->loop = loop_->finish();
+  }
+
+ private:
+  // What was mapped (or given up) since the last call: its outputs, and the load it leaves.
+  void publish() {
+    const SystemCallbacks& cb = shared_->callbacks;
+    for (; sweeps_published_ < result_->lidar.size(); ++sweeps_published_) {
+      if (cb.lidar_pose) cb.lidar_pose(result_->lidar[sweeps_published_]);
+    }
+    if (loop_) {
+      for (; global_published_ < loop_->lidar_global().size(); ++global_published_) {
+        if (cb.lidar_global_pose) cb.lidar_global_pose(loop_->lidar_global()[global_published_]);
+      }
+      for (; candidates_published_ < loop_->candidates().size(); ++candidates_published_) {
+        if (cb.loop_candidate) cb.loop_candidate(loop_->candidates()[candidates_published_]);
+      }
+    }
+    if (shared_->load) {
+      const std::size_t done = result_->lidar.size() + lidar_->unmapped_scans() - lidar_->waiting_scans();
+      shared_->load->sweeps.done(done - sweeps_done_);
+      sweeps_done_ = done;
+    }
+  }
+
+  OfflineRunResult* result_;
+  Shared* shared_;
+  std::size_t sweeps_published_ = 0;
+  std::size_t global_published_ = 0;
+  std::size_t candidates_published_ = 0;
+  std::size_t sweeps_done_ = 0;
+  Trajectory imu_poses_;
+  Trajectory imu_motion_;
+  std::optional<LoopClosureModule> loop_;
+  std::optional<LidarFeeder> lidar_;
+};
+
+// The smoother (paper: the VIO thread). Frames wait (as frontend output) until the IMU stream has passed
+// their time on the IMU clock, so a non-zero camera time offset never hands the VIO a frame too early.
+// Passes stereo pairs, sweeps and its new IMU-rate poses on to the LiDAR side, if there is one.
+class SmootherSide {
+ public:
+  SmootherSide(const RigCalibration& calib, const OfflineRunConfig& config, OfflineRunResult* result,
+               Stage<LidarMessage>* lidar, Shared* shared)
+      : vio_(calib, config.vio), result_(result), lidar_(lidar), shared_(shared) {
+    vio_.on_state([this](const VioStateOutput& s) {
+      result_->camera_states.push_back({s.state.t_ns, s.state.T_W_I()});
+      if (shared_->callbacks.camera_state) shared_->callbacks.camera_state(result_->camera_states.back());
+      if (shared_->live) shared_->live->anchor(s.state);
+    });
+    vio_.on_imu_pose([this](const VioImuOutput& p) {
+      result_->imu_poses.push_back({p.t_ns, p.T_W_I});
+      result_->imu_motion.push_back({p.t_ns, p.T_O_I});
+    });
+  }
+
+  void handle(VioMessage&& message) {
+    if (auto* sample = std::get_if<ImuSample>(&message)) {
+      release_frames_before(sample->t_ns);
+      vio_.add_imu(*sample);
+      ++result_->imu_samples;
+      if (lidar_) lidar_->push(new_poses());
+    } else if (auto* tracked = std::get_if<TrackedFrame>(&message)) {
+      if (lidar_) lidar_->push(std::move(tracked->frame));
+      pending_.push_back(std::move(tracked->out));
+    } else if (lidar_) {
+      lidar_->push(std::move(std::get<LidarScan>(message)));
+    }
+  }
+
+  void finish() {
+    release_frames_before(std::numeric_limits<TimeNs>::max());
+    if (lidar_) lidar_->push(new_poses());
+  }
+
+ private:
+  void release_frames_before(TimeNs t_ns) {
+    while (!pending_.empty() && pending_.front().t_ns < t_ns) {
+      const auto start = std::chrono::steady_clock::now();
+      vio_.add_frame(pending_.front());
+      result_->smoother_ms.push_back(elapsed_ms(start));
+      pending_.pop_front();
+      if (shared_->load) shared_->load->frames.done();
+    }
+  }
+
+  PosesAdvanced new_poses() {
+    PosesAdvanced p;
+    p.imu_poses.assign(result_->imu_poses.begin() + sent_, result_->imu_poses.end());
+    p.imu_motion.assign(result_->imu_motion.begin() + sent_, result_->imu_motion.end());
+    sent_ = result_->imu_poses.size();
+    return p;
+  }
+
+  Vio vio_;
+  OfflineRunResult* result_;
+  Stage<LidarMessage>* lidar_;
+  Shared* shared_;
+  std::deque<FrontendOutput> pending_;
+  std::size_t sent_ = 0;
+};
+
+// The visual frontend (paper: the frontend thread): stereo pairs in, tracked features out; everything else
+// passes through in order.
+class FrontendSide {
+ public:
+  FrontendSide(const RigCalibration& calib, const OfflineRunConfig& config, OfflineRunResult* result,
+               Stage<VioMessage>* vio)
+      : frontend_(calib, config.frontend), cam_offset_ns_(calib.cam_time_offset_ns), result_(result), vio_(vio) {}
+
+  void handle(FrontendMessage&& message) {
+    if (auto* frame = std::get_if<StereoFrame>(&message)) {
+      frame->t_ns += cam_offset_ns_;
+      const auto start = std::chrono::steady_clock::now();
+      FrontendOutput out = frontend_.process(*frame);
+      result_->frontend_ms.push_back(elapsed_ms(start));
+      result_->matches_per_frame.push_back(static_cast<int>(out.matches.size()));
+      vio_->push(TrackedFrame{std::move(*frame), std::move(out)});
+    } else if (auto* sample = std::get_if<ImuSample>(&message)) {
+      vio_->push(*sample);
+    } else {
+      vio_->push(std::move(std::get<LidarScan>(message)));
+    }
+  }
+
+ private:
+  Frontend frontend_;
+  TimeNs cam_offset_ns_;
+  OfflineRunResult* result_;
+  Stage<VioMessage>* vio_;
+};
+
+}  // namespace
+
+struct System::Impl {
+  Impl(const RigCalibration& calib, const OfflineRunConfig& config, SystemCallbacks callbacks) {
+    const bool with_vio = config.mode != RunMode::kLidarOnly;
+    if (config.mode != RunMode::kVio && !calib.has_lidar) {
+      throw InputError("rig calibration", "mode " + run_mode_name(config.mode) + " needs a LiDAR calibration");
+    }
+    shared.callbacks = std::move(callbacks);
+    if (with_vio && shared.callbacks.imu_pose) {
+      shared.live.emplace(calib.imu, Vec3(0, 0, -config.vio.smoother.gravity_m_s2));
+    }
+    if (config.realtime.speed > 0.0) shared.load.emplace(config.realtime);
+    // Offline a full queue makes the pusher wait. Live, it must not wait: the overload policy bounds the pairs
+    // and sweeps, and the room left is for the IMU samples and pose updates between them (seconds of them).
+    const std::size_t capacity = shared.load ? config.realtime.queue_capacity : kDefaultStageCapacity;
+    // The modules, downstream first so that they outlive the upstream ones that feed them.
+    if (config.mode != RunMode::kVio) {
+      lidar_side.emplace(calib, config, &result, &shared);
+      lidar.emplace([this](LidarMessage&& m) { lidar_side->handle(std::move(m)); }, config.threads, capacity);
+    }
+    if (with_vio) {
+      smoother_side.emplace(calib, config, &result, lidar ? &*lidar : nullptr, &shared);
+      smoother.emplace([this](VioMessage&& m) { smoother_side->handle(std::move(m)); }, config.threads, capacity);
+      frontend_side.emplace(calib, config, &result, &*smoother);
+      frontend.emplace([this](FrontendMessage&& m) { frontend_side->handle(std::move(m)); }, config.threads, capacity);
+    }
+  }
+
+  template <typename Message>
+  void push_first(Message&& message) {
+    if (frontend) frontend->push(std::forward<Message>(message));
+    else if (lidar) lidar->push(std::forward<Message>(message));
+  }
+
+  OfflineRunResult result;
+  Shared shared;
+  std::mutex push_mutex;  // one push at a time: the modules see one order
+  std::optional<LidarSide> lidar_side;
+  std::optional<Stage<LidarMessage>> lidar;
+  std::optional<SmootherSide> smoother_side;
+  std::optional<Stage<VioMessage>> smoother;
+  std::optional<FrontendSide> frontend_side;
+  std::optional<Stage<FrontendMessage>> frontend;
+};
+
+System::System(const RigCalibration& calib, const OfflineRunConfig& config, SystemCallbacks callbacks)
+    : impl_(std::make_unique<Impl>(calib, config, std::move(callbacks))) {}
+
+System::~System() = default;
+
+void System::push_imu(const ImuSample& sample) {
+  std::lock_guard<std::mutex> lock(impl_->push_mutex);
+  Shared& shared = impl_->shared;
+  if (shared.live) {  // published before the sample goes down the pipeline
+    if (const std::optional<SE3> T_W_I = shared.live->add(sample)) shared.callbacks.imu_pose({sample.t_ns, *T_W_I});
+  }
+  if (impl_->frontend) impl_->frontend->push(sample);
+}
+
+bool System::push_stereo(StereoFrame frame) {
+  std::lock_guard<std::mutex> lock(impl_->push_mutex);
+  if (!impl_->frontend) return true;  // lidar-only: no use for images
+  if (impl_->shared.load && !impl_->shared.load->frames.admit()) return false;
+  impl_->frontend->push(std::move(frame));
+  return true;
+}
+
+bool System::push_scan(LidarScan scan) {
+  std::lock_guard<std::mutex> lock(impl_->push_mutex);
+  if (!impl_->lidar) return true;  // vio: no use for sweeps
+  if (impl_->shared.load && !impl_->shared.load->sweeps.admit()) return false;
+  impl_->push_first(std::move(scan));
+  return true;
+}
+
+bool System::failed() const {
+  return (impl_->frontend && impl_->frontend->failed()) || (impl_->smoother && impl_->smoother->failed()) ||
+         (impl_->lidar && impl_->lidar->failed());
+}
+
+std::size_t System::dropped_frames() const { return impl_->shared.load ? impl_->shared.load->frames.dropped() : 0; }
+std::size_t System::dropped_sweeps() const { return impl_->shared.load ? impl_->shared.load->sweeps.dropped() : 0; }
+
+OfflineRunResult System::finish() {
+  Impl& m = *impl_;
+  if (m.frontend) m.frontend->finish();
+  if (m.smoother) {
+    m.smoother->finish();
+    m.smoother_side->finish();
+  }
+  if (m.lidar) {
+    m.lidar->finish();
+    m.lidar_side->finish();
+  }
+  return std::move(m.result);
+}
+
+}  // namespace vilslam
