@@ -13,6 +13,7 @@
 
 #include "common/error.h"
 #include "io/dataset.h"
+#include "io/synthetic_dataset.h"
 #include "io/trajectory_io.h"
 #include "pipeline/offline_runner.h"
 #include "pipeline/system.h"
@@ -128,13 +129,14 @@ TEST_F(SystemApi, PushedEventsGiveTheOfflineRunAndEveryOutputReachesItsCallback)
   EXPECT_LT(gaps_m.back(), 0.05);
 }
 
-TEST_F(SystemApi, ModeThatNeedsTheLidarRefusesARigWithout) {
-  RigCalibration calib = open_dataset(*data_)->calibration();
+TEST(SystemApiRig, ModeThatNeedsTheLidarRefusesARigWithout) {
+  RigCalibration calib = test::synthetic_calibration();
+  OfflineRunConfig config;
+  config.mode = RunMode::kLidarOnly;
   calib.has_lidar = false;
-  EXPECT_THROW(System(calib, config()), InputError);
-  OfflineRunConfig vio = config();
-  vio.mode = RunMode::kVio;
-  EXPECT_NO_THROW(System(calib, vio));
+  EXPECT_THROW(System(calib, config), InputError);
+  config.mode = RunMode::kVio;
+  EXPECT_NO_THROW(System(calib, config));
 }
 
 // `cmake --install` gives a package another project finds: examples/consumer (a robot program on System) is
