@@ -27,6 +27,7 @@ struct Finding {
 const std::vector<Finding> kFindings = {
     {"cloud_ply", "skipped_element_count_hang", Outcome::kRejected},
     {"cloud_ply", "ascii_vertex_count_alloc", Outcome::kRejected},
+    {"cloud_pcd", "ascii_points_count_alloc", Outcome::kRejected},
 };
 
 Outcome run(const std::string& target, const fs::path& input) {
