@@ -6,10 +6,14 @@
 // regression test (tests/fuzz) runs the kept inputs of past findings through the same entries.
 #include <cstddef>
 #include <cstdint>
+#include <string>
 
 namespace vilslam::fuzz {
 
-enum class Outcome { kRead, kRejected };
+struct Outcome {
+  bool read = false;
+  std::string error;  // the InputError's (WireError's) message when the reader rejected the input
+};
 
 using Entry = Outcome (*)(const std::uint8_t* data, std::size_t size);
 

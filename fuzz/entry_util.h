@@ -9,16 +9,19 @@
 
 namespace vilslam::fuzz {
 
-// kRead when read() returns, kRejected when it throws InputError; anything else propagates (a finding).
+// Read when read() returns, rejected when it throws InputError; anything else propagates (a finding).
 template <typename Read>
 Outcome outcome_of(Read&& read) {
   try {
     read();
-    return Outcome::kRead;
-  } catch (const InputError&) {
-    return Outcome::kRejected;
+    return {true, {}};
+  } catch (const InputError& e) {
+    return {false, e.what()};
   }
 }
+
+// Targets whose first byte picks the reader have nothing to read in an empty input.
+inline const Outcome kEmptyInput{false, "empty input"};
 
 // The path of `name` (may hold folders) in this process's own temporary folder (under $TMPDIR; scripts/fuzz
 // points it at /dev/shm), holding exactly the given bytes. The folder is removed at exit.

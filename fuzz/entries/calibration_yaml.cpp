@@ -8,7 +8,7 @@
 namespace vilslam::fuzz {
 
 Outcome calibration_yaml(const std::uint8_t* data, std::size_t size) {
-  if (size == 0) return Outcome::kRejected;
+  if (size == 0) return kEmptyInput;
   const std::string path = write_temp_file("calibration.yaml", data + 1, size - 1);
   return outcome_of([&] {
     switch (data[0] % 7) {

@@ -7,7 +7,7 @@
 namespace vilslam::fuzz {
 
 Outcome euroc_csv(const std::uint8_t* data, std::size_t size) {
-  if (size == 0) return Outcome::kRejected;
+  if (size == 0) return kEmptyInput;
   const std::string path = write_temp_file("cam0/data.csv", data + 1, size - 1);
   return outcome_of([&] {
     switch (data[0] % 4) {

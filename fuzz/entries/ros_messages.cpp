@@ -10,7 +10,7 @@
 namespace vilslam::fuzz {
 
 Outcome ros_messages(const std::uint8_t* data, std::size_t size) {
-  if (size == 0) return Outcome::kRejected;
+  if (size == 0) return kEmptyInput;
   const std::vector<std::uint8_t> bytes(data + 1, data + size);
   try {
     switch (data[0] % 6) {
@@ -38,9 +38,9 @@ Outcome ros_messages(const std::uint8_t* data, std::size_t size) {
       default:
         decode_ros_header(bytes);
     }
-    return Outcome::kRead;
-  } catch (const WireError&) {
-    return Outcome::kRejected;
+    return {true, {}};
+  } catch (const WireError& e) {
+    return {false, e.what()};
   }
 }
 

@@ -5,7 +5,7 @@
 namespace vilslam::fuzz {
 
 Outcome scan_bin(const std::uint8_t* data, std::size_t size) {
-  if (size == 0) return Outcome::kRejected;
+  if (size == 0) return kEmptyInput;
   const std::string path = write_temp_file("scan.bin", data + 1, size - 1);
   return outcome_of([&] {
     if (data[0] % 2 == 0) {

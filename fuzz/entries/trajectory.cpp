@@ -5,7 +5,7 @@
 namespace vilslam::fuzz {
 
 Outcome trajectory(const std::uint8_t* data, std::size_t size) {
-  if (size == 0) return Outcome::kRejected;
+  if (size == 0) return kEmptyInput;
   const std::string path = write_temp_file("trajectory.txt", data + 1, size - 1);
   const TrajectoryFormat formats[] = {TrajectoryFormat::kTum, TrajectoryFormat::kKitti, TrajectoryFormat::kEuroc};
   return outcome_of([&] { read_trajectory(path, formats[data[0] % 3]); });

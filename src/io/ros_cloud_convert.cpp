@@ -109,7 +109,13 @@ LidarScan scan_from_point_cloud2(const RosPointCloud2& cloud) {
       if (!std::isfinite(point.x) || !std::isfinite(point.y) || !std::isfinite(point.z)) continue;
       if (point.x == 0 && point.y == 0 && point.z == 0) continue;
       if (fi) point.intensity = static_cast<float>(read_value(p + fi->offset, fi->datatype));
-      if (fr) point.ring = static_cast<std::uint16_t>(read_value(p + fr->offset, fr->datatype));
+      if (fr) {
+        const double ring = read_value(p + fr->offset, fr->datatype);
+        if (!(ring >= 0 && ring <= 65535) || ring != std::floor(ring)) {
+          throw WireError("PointCloud2 'ring' field holds " + std::to_string(ring) + ", not an integer in 0..65535");
+        }
+        point.ring = static_cast<std::uint16_t>(ring);
+      }
       double t_s = 0;
       if (ft) {
         const double v = read_value(p + ft->field->offset, ft->field->datatype);
