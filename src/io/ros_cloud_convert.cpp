@@ -56,6 +56,10 @@ std::optional<TimeField> time_field(const RosPointCloud2& cloud) {
 // Checks the geometry of the cloud and of each field against point_step.
 void check_layout(const RosPointCloud2& cloud) {
   if (cloud.is_bigendian) throw WireError("big-endian PointCloud2 is not supported");
+  // An empty cloud is 0 x 0 or 1 x 0 (PCL, the drivers); rows of no points (and no bytes) could number 4e9.
+  if (cloud.width == 0 && cloud.height > 1) {
+    throw WireError("PointCloud2 of width 0 has " + std::to_string(cloud.height) + " rows");
+  }
   if (std::uint64_t{cloud.row_step} < std::uint64_t{cloud.width} * cloud.point_step) {
     throw WireError("PointCloud2 row_step " + std::to_string(cloud.row_step) + " < width x point_step");
   }

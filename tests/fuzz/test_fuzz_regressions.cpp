@@ -30,6 +30,7 @@ const std::vector<Finding> kFindings = {
     {"cloud_pcd", "ascii_points_count_alloc", "truncated payload: header declares 4000000000 points"},
     {"ros_messages", "point_cloud2_ring_overflow", "not an integer in 0..65535"},
     {"calibration_yaml", "kalibr_resolution_int_overflow", "resolution: expected two positive integers"},
+    {"ros_messages", "point_cloud2_empty_rows_hang", "PointCloud2 of width 0 has 4291875016 rows"},
 };
 
 Outcome run(const std::string& target, const fs::path& input) {
