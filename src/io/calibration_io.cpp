@@ -1,5 +1,7 @@
 #include "io/calibration_io.h"
 
+#include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "common/error.h"
@@ -36,6 +38,11 @@ CameraIntrinsics read_pinhole(const YAML::Node& node, const std::string& file, c
   if (model != "pinhole") throw InputError(file, "camera_model '" + model + "' is not supported (pinhole only)");
   CameraIntrinsics c;
   const std::vector<double> res = yaml_doubles(node, "resolution", file, 2);
+  for (double v : res) {
+    if (!(v >= 1 && v <= std::numeric_limits<int>::max()) || v != std::floor(v)) {
+      throw InputError(file, "resolution: expected two positive integers");
+    }
+  }
   c.width_px = static_cast<int>(res[0]);
   c.height_px = static_cast<int>(res[1]);
   const std::vector<double> k = yaml_doubles(node, "intrinsics", file, 4);

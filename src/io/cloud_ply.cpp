@@ -96,19 +96,38 @@ Header parse_header(const std::string& path, const std::string& bytes) {
   return header;
 }
 
-// Byte length of one binary record of an element that precedes the vertices (list lengths read in place).
+// Byte length of one binary record at bytes[at] of an element that precedes the vertices (list lengths read
+// in place); throws when the record runs past the end of the file.
 std::size_t binary_record_size(const std::string& path, const std::string& bytes, std::size_t at, const Element& e) {
+  const std::size_t available = bytes.size() - at;  // at <= bytes.size()
   std::size_t size = 0;
   for (const Property& p : e.properties) {
-    if (!p.is_list) {
-      size += scalar_size(p.type);
-      continue;
+    std::size_t n = 1;
+    if (p.is_list) {
+      if (scalar_size(p.count_type) > available - size) throw InputError(path, "truncated payload");
+      const double length = load_scalar(bytes.data() + at + size, p.count_type);
+      if (!(length >= 0 && length <= static_cast<double>(available))) {
+        throw InputError(path, "bad list length in element '" + e.name + "'");
+      }
+      n = static_cast<std::size_t>(length);
+      size += scalar_size(p.count_type);
     }
-    if (at + size + scalar_size(p.count_type) > bytes.size()) throw InputError(path, "truncated payload");
-    const auto n = static_cast<std::size_t>(load_scalar(bytes.data() + at + size, p.count_type));
-    size += scalar_size(p.count_type) + n * scalar_size(p.type);
+    if (n > (available - size) / scalar_size(p.type)) throw InputError(path, "truncated payload");
+    size += n * scalar_size(p.type);
   }
   return size;
+}
+
+// The offset after `e.count` binary records of an element that precedes the vertices. Each record is checked
+// against the file's end, so a count the file cannot hold ends at the end of the file, not after count steps.
+std::size_t skip_binary_records(const std::string& path, const std::string& bytes, std::size_t begin,
+                                const Element& e) {
+  for (std::size_t i = 0; i < e.count; ++i) {
+    const std::size_t size = binary_record_size(path, bytes, begin, e);
+    if (size == 0) break;  // records without properties take no bytes, however many there are
+    begin += size;
+  }
+  return begin;
 }
 
 }  // namespace
@@ -119,15 +138,15 @@ PointCloud decode_ply(const std::string& path, const std::string& bytes) {
   long line = header.lines + 1;
   for (const Element& e : header.elements) {
     if (e.name != "vertex") {
+      if (!header.ascii) {
+        begin = skip_binary_records(path, bytes, begin, e);
+        continue;
+      }
       for (std::size_t i = 0; i < e.count; ++i) {
-        if (header.ascii) {
-          const std::size_t end = bytes.find('\n', begin);
-          if (end == std::string::npos) throw InputError(path, "truncated payload", line);
-          begin = end + 1;
-          ++line;
-        } else {
-          begin += binary_record_size(path, bytes, begin, e);
-        }
+        const std::size_t end = bytes.find('\n', begin);
+        if (end == std::string::npos) throw InputError(path, "truncated payload", line);
+        begin = end + 1;
+        ++line;
       }
       continue;
     }

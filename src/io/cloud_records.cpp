@@ -143,6 +143,12 @@ PointCloud decode_binary(const std::string& path, const std::string& bytes, std:
 
 PointCloud decode_ascii(const std::string& path, const std::string& bytes, std::size_t begin, std::size_t count,
                         const RecordLayout& layout, long first_line) {
+  // Every record takes a byte at least: a count the file cannot hold is refused before allocating for it.
+  if (begin > bytes.size() || count > bytes.size() - begin) {
+    throw InputError(path, "truncated payload: header declares " + std::to_string(count) + " points, file has " +
+                               std::to_string(bytes.size() - std::min(begin, bytes.size())) + " bytes of data",
+                     first_line);
+  }
   PointCloud cloud = empty_cloud(layout, count);
   std::size_t pos = begin;
   for (std::size_t i = 0; i < count; ++i) {

@@ -56,6 +56,10 @@ std::optional<TimeField> time_field(const RosPointCloud2& cloud) {
 // Checks the geometry of the cloud and of each field against point_step.
 void check_layout(const RosPointCloud2& cloud) {
   if (cloud.is_bigendian) throw WireError("big-endian PointCloud2 is not supported");
+  // An empty cloud is 0 x 0 or 1 x 0 (PCL, the drivers); rows of no points (and no bytes) could number 4e9.
+  if (cloud.width == 0 && cloud.height > 1) {
+    throw WireError("PointCloud2 of width 0 has " + std::to_string(cloud.height) + " rows");
+  }
   if (std::uint64_t{cloud.row_step} < std::uint64_t{cloud.width} * cloud.point_step) {
     throw WireError("PointCloud2 row_step " + std::to_string(cloud.row_step) + " < width x point_step");
   }
@@ -109,7 +113,13 @@ LidarScan scan_from_point_cloud2(const RosPointCloud2& cloud) {
       if (!std::isfinite(point.x) || !std::isfinite(point.y) || !std::isfinite(point.z)) continue;
       if (point.x == 0 && point.y == 0 && point.z == 0) continue;
       if (fi) point.intensity = static_cast<float>(read_value(p + fi->offset, fi->datatype));
-      if (fr) point.ring = static_cast<std::uint16_t>(read_value(p + fr->offset, fr->datatype));
+      if (fr) {
+        const double ring = read_value(p + fr->offset, fr->datatype);
+        if (!(ring >= 0 && ring <= 65535) || ring != std::floor(ring)) {
+          throw WireError("PointCloud2 'ring' field holds " + std::to_string(ring) + ", not an integer in 0..65535");
+        }
+        point.ring = static_cast<std::uint16_t>(ring);
+      }
       double t_s = 0;
       if (ft) {
         const double v = read_value(p + ft->field->offset, ft->field->datatype);

@@ -79,8 +79,9 @@ std::vector<Eigen::Vector3f> DenseMap::points(std::uint32_t min_hits) const {
   std::vector<std::uint64_t> keys;
   keys.reserve(num_voxels_);
   for (const auto& [key, block] : blocks_) {
+    const std::uint64_t this_block = key;  // C++17 lambdas cannot capture a structured binding (clang refuses)
     block.for_each([&](unsigned local, const VoxelBlock::Voxel& voxel) {
-      if (voxel.count >= min_hits) keys.push_back(voxel_key_in_block(key, local));
+      if (voxel.count >= min_hits) keys.push_back(voxel_key_in_block(this_block, local));
     });
   }
   std::sort(keys.begin(), keys.end());

@@ -1,0 +1,35 @@
+#include "entry_util.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+namespace vilslam::fuzz {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ProcessFolder {
+  fs::path path = fs::temp_directory_path() / ("vilslam_fuzz_" + std::to_string(::getpid()));
+  ProcessFolder() { fs::create_directories(path); }
+  ~ProcessFolder() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+};
+
+}  // namespace
+
+std::string write_temp_file(const std::string& name, const std::uint8_t* data, std::size_t size) {
+  static const ProcessFolder folder;
+  const fs::path path = folder.path / name;
+  fs::create_directories(path.parent_path());
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+  if (!out.flush()) throw std::runtime_error("cannot write " + path.string());
+  return path.string();
+}
+
+}  // namespace vilslam::fuzz

@@ -1,0 +1,30 @@
+#pragma once
+// What the entries share: the outcome of a read, and the fuzz input as a file for readers that take a path.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "common/error.h"
+#include "entries.h"
+
+namespace vilslam::fuzz {
+
+// Read when read() returns, rejected when it throws InputError; anything else propagates (a finding).
+template <typename Read>
+Outcome outcome_of(Read&& read) {
+  try {
+    read();
+    return {true, {}};
+  } catch (const InputError& e) {
+    return {false, e.what()};
+  }
+}
+
+// Targets whose first byte picks the reader have nothing to read in an empty input.
+inline const Outcome kEmptyInput{false, "empty input"};
+
+// The path of `name` (may hold folders) in this process's own temporary folder (under $TMPDIR; scripts/fuzz
+// points it at /dev/shm), holding exactly the given bytes. The folder is removed at exit.
+std::string write_temp_file(const std::string& name, const std::uint8_t* data, std::size_t size);
+
+}  // namespace vilslam::fuzz
