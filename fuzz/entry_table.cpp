@@ -13,7 +13,7 @@ Entry find_entry(const char* name) {
                   {"cloud_ply", cloud_ply},   {"scan_bin", scan_bin},
                   {"trajectory", trajectory}, {"loops_csv", loops_csv},
                   {"vocabulary", vocabulary}, {"ros_messages", ros_messages},
-                  {"rosbag", rosbag}};
+                  {"rosbag", rosbag},         {"map_file", map_file}};
   for (const auto& e : kEntries) {
     if (std::strcmp(e.name, name) == 0) return e.entry;
   }
