@@ -32,4 +32,18 @@ std::string write_temp_file(const std::string& name, const std::uint8_t* data, s
   return path.string();
 }
 
+RigCalibration small_rig() {
+  RigCalibration c;
+  for (CameraIntrinsics* cam : {&c.cam0, &c.cam1}) {
+    cam->width_px = 8;
+    cam->height_px = 6;
+    cam->fx = cam->fy = 10;
+    cam->cx = 4;
+    cam->cy = 3;
+    cam->rate_hz = 20;
+  }
+  c.has_lidar = true;
+  return c;
+}
+
 }  // namespace vilslam::fuzz

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "common/calibration.h"
 #include "common/error.h"
 #include "entries.h"
 
@@ -26,5 +27,8 @@ inline const Outcome kEmptyInput{false, "empty input"};
 // The path of `name` (may hold folders) in this process's own temporary folder (under $TMPDIR; scripts/fuzz
 // points it at /dev/shm), holding exactly the given bytes. The folder is removed at exit.
 std::string write_temp_file(const std::string& name, const std::uint8_t* data, std::size_t size);
+
+// A valid rig with tiny cameras and a LiDAR, for targets that need one beside the fuzzed file.
+RigCalibration small_rig();
 
 }  // namespace vilslam::fuzz

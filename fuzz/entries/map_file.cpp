@@ -17,16 +17,7 @@ constexpr std::array<const char*, 4> kFiles = {"map.yaml", "rig.yaml", "poses.tu
 // Three poses and one key frame with every kind of field (rows with and without a 3D point, BoW, features).
 loop::SavedMap template_map() {
   loop::SavedMap map;
-  for (CameraIntrinsics* cam : {&map.rig.cam0, &map.rig.cam1}) {
-    cam->width_px = 64;
-    cam->height_px = 48;
-    cam->fx = cam->fy = 40.0;
-    cam->cx = 32.0;
-    cam->cy = 24.0;
-    cam->rate_hz = 20.0;
-  }
-  map.rig.T_I_C1 = SE3(Quat::Identity(), Vec3(0.1, 0.0, 0.0));
-  map.rig.has_lidar = true;
+  map.rig = small_rig();
   for (int i = 0; i < 3; ++i) map.poses.push_back({1'000'000'000LL + i * 100'000'000LL, SE3(Quat::Identity(), Vec3(i, 0, 0))});
   loop::KeyFrame k;
   k.pose_index = 1;

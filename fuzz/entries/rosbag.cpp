@@ -8,17 +8,7 @@ namespace vilslam::fuzz {
 namespace {
 
 std::string write_rig_yaml() {
-  RigCalibration c;
-  for (CameraIntrinsics* cam : {&c.cam0, &c.cam1}) {
-    cam->width_px = 8;
-    cam->height_px = 6;
-    cam->fx = cam->fy = 10;
-    cam->cx = 4;
-    cam->cy = 3;
-    cam->rate_hz = 20;
-  }
-  c.has_lidar = true;
-  const std::string text = rig_yaml_text(c);
+  const std::string text = rig_yaml_text(small_rig());
   return write_temp_file("rig.yaml", reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
 }
 
