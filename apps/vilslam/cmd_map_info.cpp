@@ -40,7 +40,7 @@ vilslam::cli::Command reg("map-info", "Check a saved map (vilslam run --save-map
       std::printf("poses from %.3f s to %.3f s\n", ns_to_s(map.poses.front().t_ns), ns_to_s(map.poses.back().t_ns));
     }
     if (!o->vocabulary.empty() || !o->rig.empty()) {
-      const std::string vocabulary = o->vocabulary.empty() || o->vocabulary == "default" ? default_vocabulary_path() : o->vocabulary;
+      const std::string vocabulary = vocabulary_file(o->vocabulary.empty() ? "default" : o->vocabulary);
       RigCalibration rig = map.rig;
       if (!o->rig.empty()) {
         rig = std::filesystem::is_directory(o->rig) ? open_dataset(o->rig)->calibration() : read_rig_yaml(o->rig);

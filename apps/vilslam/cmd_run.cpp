@@ -108,8 +108,7 @@ vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and writ
       if (result.time_offset) map.rig.cam_time_offset_ns = s_to_ns(result.time_offset->offset_s);
       map.poses = result.loop->lidar_final;
       map.key_frames = std::move(result.loop->key_frame_data);
-      map.vocabulary_id = loop::vocabulary_identity(config.vocabulary == "default" ? default_vocabulary_path()
-                                                                                   : config.vocabulary);
+      map.vocabulary_id = loop::vocabulary_identity(vocabulary_file(config.vocabulary));
       loop::save_map(o->save_map, map);
       std::printf("wrote map %s (%zu key frames, %zu poses)\n", o->save_map.c_str(), map.key_frames.size(),
                   map.poses.size());

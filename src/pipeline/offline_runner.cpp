@@ -40,6 +40,8 @@ std::string default_vocabulary_path() {
   return std::filesystem::exists(VILSLAM_DEFAULT_VOCABULARY) ? VILSLAM_DEFAULT_VOCABULARY : VILSLAM_INSTALLED_VOCABULARY;
 }
 
+std::string vocabulary_file(const std::string& name) { return name == "default" ? default_vocabulary_path() : name; }
+
 RunMode parse_run_mode(const std::string& name) {
   if (name == "vio") return RunMode::kVio;
   if (name == "vil") return RunMode::kVil;

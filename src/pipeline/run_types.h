@@ -25,6 +25,8 @@ std::string run_mode_name(RunMode mode);
 
 // The vocabulary shipped in config/ (docs/loop.md).
 std::string default_vocabulary_path();
+// The file a config's `vocabulary` names: "default" is default_vocabulary_path().
+std::string vocabulary_file(const std::string& name);
 
 struct OfflineRunConfig {
   RunMode mode = RunMode::kVio;

@@ -53,8 +53,9 @@ class LidarSide {
     const bool with_vio = config.mode == RunMode::kVil;  // the LiDAR side exists only in vil and lidar-only
     if (with_vio) {
       std::shared_ptr<const Vocabulary> vocabulary;
-      if (config.loop.enabled) vocabulary = std::make_shared<const Vocabulary>(Vocabulary::load(
-            config.vocabulary == "default" ? default_vocabulary_path() : config.vocabulary));
+      if (config.loop.enabled) {
+        vocabulary = std::make_shared<const Vocabulary>(Vocabulary::load(vocabulary_file(config.vocabulary)));
+      }
       loop_.emplace(config.loop, config.graph, vocabulary, calib, config.frontend, config.lidar.lidar, &imu_motion_);
     }
     lidar_.emplace(config.lidar, calib, with_vio ? &imu_poses_ : nullptr, with_vio ? &imu_motion_ : nullptr,
@@ -239,12 +240,6 @@ struct System::Impl {
     }
   }
 
-  template <typename Message>
-  void push_first(Message&& message) {
-    if (frontend) frontend->push(std::forward<Message>(message));
-    else if (lidar) lidar->push(std::forward<Message>(message));
-  }
-
   OfflineRunResult result;
   Shared shared;
   std::mutex push_mutex;  // one push at a time: the modules see one order
@@ -282,7 +277,8 @@ bool System::push_scan(LidarScan scan) {
   std::lock_guard<std::mutex> lock(impl_->push_mutex);
   if (!impl_->lidar) return true;  // vio: no use for sweeps
   if (impl_->shared.load && !impl_->shared.load->sweeps.admit()) return false;
-  impl_->push_first(std::move(scan));
+  if (impl_->frontend) impl_->frontend->push(std::move(scan));  // in order with the IMU samples and pairs
+  else impl_->lidar->push(std::move(scan));
   return true;
 }
 
