@@ -10,6 +10,7 @@
 #include <map>
 
 #include "common/error.h"
+#include "io/rosbag_layout.h"
 
 namespace vilslam {
 namespace {
@@ -91,6 +92,7 @@ struct BagIn::Impl {
 BagIn::BagIn(const std::string& path) : impl_(std::make_unique<Impl>()) {
   impl_->path = path;
   if (!std::filesystem::is_regular_file(path)) throw InputError(path, "bag file does not exist");
+  check_bag_layout(path);
   try {
     impl_->bag.open(path, rosbag::bagmode::Read);
     rosbag::View all(impl_->bag);

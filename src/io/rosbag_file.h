@@ -1,7 +1,8 @@
 #pragma once
 // ROS1 bag files through Debian's rosbag_storage (a storage library only: no ROS master, no workspace).
 // Messages are handled as their serialized bytes (ros_messages.h decodes them). Every failure of the
-// storage library (not a bag, truncated, unindexed) becomes an InputError naming the file.
+// storage library (not a bag, truncated, unindexed) becomes an InputError naming the file; the record layout
+// is checked first (rosbag_layout.h), as the library trusts the lengths a file declares.
 #include <cstdint>
 #include <functional>
 #include <memory>

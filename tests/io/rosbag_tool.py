@@ -1,10 +1,12 @@
 #!/usr/bin/python3
 """ROS's own bag library (Debian python3-rosbag, python3-sensor-msgs) on vilslam data, for the bag tests.
 
-  rosbag_tool.py write DATASET OUT.bag [--left ENC] [--right ENC] [--lidar LAYOUT] [--no-groundtruth]
+  rosbag_tool.py write DATASET OUT.bag [--left ENC] [--right ENC] [--lidar LAYOUT] [--compression C]
+                   [--no-groundtruth]
       A dataset in vilslam's folder format as a bag, with ROS's message classes and writer.
       ENC: mono8 | rgb8 | bgr8 | png (sensor_msgs/CompressedImage) | any other name (written with mono8
       bytes, to make a bag with a wrong encoding). LAYOUT: velodyne | ouster | hesai | livox | livox_offset.
+      C: the chunks' compression, none | bz2 | lz4 (rosbag record --bz2 / --lz4).
   rosbag_tool.py dump BAG OUT.json
       Topics, types, counts, stamps and decoded values of a bag, as JSON.
 Run with Debian's /usr/bin/python3 (the packages are not on other interpreters' paths).
@@ -140,7 +142,7 @@ def cloud_message(path, t_ns, layout):
     return msg
 
 
-def write(dataset, out, left="mono8", right="mono8", lidar="velodyne", groundtruth=True):
+def write(dataset, out, left="mono8", right="mono8", lidar="velodyne", compression="none", groundtruth=True):
     mav0 = os.path.join(dataset, "mav0")
     messages = []  # (t_ns, order, topic, msg)
     for r in rows(os.path.join(mav0, "imu0", "data.csv")):
@@ -170,7 +172,7 @@ def write(dataset, out, left="mono8", right="mono8", lidar="velodyne", groundtru
             q.w, q.x, q.y, q.z = map(float, r[4:8])
             messages.append((int(r[0]), 1, "/ground_truth", msg))
     messages.sort(key=lambda m: (m[0], m[1]))
-    with rosbag.Bag(out, "w") as bag:
+    with rosbag.Bag(out, "w", compression=compression) as bag:
         for t_ns, _, topic, msg in messages:
             bag.write(topic, msg, stamp(max(t_ns, 1)))
 
@@ -218,13 +220,13 @@ def dump(bag_path, out):
 
 def main(argv):
     if len(argv) >= 4 and argv[1] == "write":
-        opts = {"left": "mono8", "right": "mono8", "lidar": "velodyne", "groundtruth": True}
+        opts = {"left": "mono8", "right": "mono8", "lidar": "velodyne", "compression": "none", "groundtruth": True}
         args = argv[4:]
         while args:
             flag = args.pop(0)
             if flag == "--no-groundtruth":
                 opts["groundtruth"] = False
-            elif flag in ("--left", "--right", "--lidar"):
+            elif flag in ("--left", "--right", "--lidar", "--compression"):
                 opts[flag[2:]] = args.pop(0)
             else:
                 sys.exit("unknown option " + flag)

@@ -1,5 +1,6 @@
 // ROS1 bags written by ROS's own Python writer (python3-rosbag, tests/io/rosbag_tool.py) from a dataset in
-// the project's format read back event for event as that folder, in every image encoding and LiDAR layout.
+// the project's format read back event for event as that folder, in every image encoding, LiDAR layout and
+// chunk compression.
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
@@ -25,19 +26,21 @@ struct LayoutCase {
   const char* right;
   double point_time_s;  // how exactly the layout's time field carries the folder's float32 seconds
   bool has_ring;
+  const char* compression;  // of the chunks (rosbag record --bz2 / --lz4)
 };
 
 TEST_F(RosbagRead, EveryEncodingAndLayoutReadsAsTheFolder) {
   const LayoutCase cases[] = {
-      {"velodyne", "mono8", "bgr8", 0.0, true},  // float32 seconds: the same numbers
-      {"ouster", "rgb8", "png", 2e-9, true},     // uint32 ns
-      {"hesai", "png", "mono8", 5e-7, true},     // float64 absolute seconds (~2.4e-7 s resolution at 1.6e9 s)
-      {"livox", "bgr8", "rgb8", 5e-7, false},    // float64 absolute ns (256 ns resolution at 1.6e18), no ring
-      {"livox_offset", "mono8", "mono8", 2e-9, false},  // uint32 ns since the stamp, no ring
+      {"velodyne", "mono8", "bgr8", 0.0, true, "none"},  // float32 seconds: the same numbers
+      {"ouster", "rgb8", "png", 2e-9, true, "bz2"},      // uint32 ns
+      {"hesai", "png", "mono8", 5e-7, true, "lz4"},      // float64 absolute seconds (~2.4e-7 s resolution at 1.6e9 s)
+      {"livox", "bgr8", "rgb8", 5e-7, false, "none"},    // float64 absolute ns (256 ns resolution at 1.6e18), no ring
+      {"livox_offset", "mono8", "mono8", 2e-9, false, "lz4"},  // uint32 ns since the stamp, no ring
   };
   for (const LayoutCase& c : cases) {
     SCOPED_TRACE(c.layout);
-    const std::string bag = python_bag(c.layout, std::string("--lidar ") + c.layout + " --left " + c.left + " --right " + c.right);
+    const std::string bag = python_bag(c.layout, std::string("--lidar ") + c.layout + " --left " + c.left + " --right " +
+                                                     c.right + " --compression " + c.compression);
     const auto from_bag = open_dataset(bag);
     const auto from_folder = open_dataset(folder_);
     EXPECT_EQ(from_bag->summary().format, "rosbag");
