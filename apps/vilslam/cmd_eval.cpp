@@ -8,10 +8,12 @@
 
 #include "common/error.h"
 #include "common/json_writer.h"
+#include "eval/alignment.h"
+#include "eval/association.h"
 #include "eval/eval_json.h"
 #include "eval/trajectory_eval.h"
-#include "io/trajectory_io.h"
 #include "io/dataset_groundtruth.h"
+#include "io/trajectory_io.h"
 #include "vilslam/command.h"
 
 namespace {
@@ -28,6 +30,8 @@ struct Options {
   std::string delta_unit = "frames";
   double max_diff_s = 0.01;
   std::string gt_frame = "imu";
+  std::string map_dir;
+  std::string map_gt_path;
 };
 
 Trajectory load(const std::string& path, const std::string& format, const std::string& fallback_format,
@@ -62,6 +66,26 @@ void print(const eval::TrajectoryEvalReport& r, const Options& o) {
   print_stats_row("RPE rot [deg]", r.rpe.rot);
 }
 
+Trajectory groundtruth(const Options& o, const std::string& path) {
+  return std::filesystem::is_directory(path)
+             ? dataset_groundtruth(path, o.gt_frame == "lidar" ? GroundTruthFrame::kLidar : GroundTruthFrame::kImu)
+             : load(path, o.gt_format, o.format, o.gt_times.empty() ? o.times : o.gt_times);
+}
+
+// --map: the ground truth moved into a saved map's frame by one SE(3) fit of the map's own poses to their
+// ground truth (the map is fitted, never the estimate). Throws InputError when they do not overlap.
+Trajectory in_map_frame(const Trajectory& gt, const Options& o) {
+  const std::string poses_path = (std::filesystem::path(o.map_dir) / "poses.tum").string();
+  const Trajectory map_poses = read_trajectory(poses_path, TrajectoryFormat::kTum);
+  const Trajectory map_gt = groundtruth(o, o.map_gt_path);
+  const eval::Association a = eval::associate(map_poses, map_gt);
+  if (a.size() < 3) throw InputError(poses_path, "fewer than 3 poses matched in time with " + o.map_gt_path);
+  // align_trajectories(est, gt) fits p_gt ~ T p_est: here est = the map's ground truth, gt = the map's poses.
+  const eval::Alignment T_map_W = eval::align_trajectories(eval::select(map_gt, a.gt_ids),
+                                                           eval::select(map_poses, a.est_ids), eval::AlignMode::kSe3);
+  return eval::apply_alignment(gt, T_map_W);
+}
+
 vilslam::cli::Command reg("eval", "Trajectory errors (APE, RPE, KITTI, final drift) against ground truth",
                           [](CLI::App& app) {
   auto o = std::make_shared<Options>();
@@ -90,12 +114,15 @@ vilslam::cli::Command reg("eval", "Trajectory errors (APE, RPE, KITTI, final dri
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   app.add_option("--json", o->json_path, "Also write the results as JSON to this file");
+  auto* map_gt = app.add_option("--map-gt", o->map_gt_path, "The --map's ground truth (file, or dataset folder in --gt-frame)");
+  app.add_option("--map", o->map_dir,
+                 "A saved map (run --save-map) whose frame the estimate is in (run --load-map): the ground truth is "
+                 "moved there by one SE(3) fit of the map's poses to --map-gt; use with --align none")
+      ->needs(map_gt);
+  map_gt->needs("--map");
   return [o]() {
     const Trajectory est = load(o->est_path, o->est_format, o->format, o->est_times.empty() ? o->times : o->est_times);
-    const Trajectory gt =
-        std::filesystem::is_directory(o->gt_path)
-            ? dataset_groundtruth(o->gt_path, o->gt_frame == "lidar" ? GroundTruthFrame::kLidar : GroundTruthFrame::kImu)
-            : load(o->gt_path, o->gt_format, o->format, o->gt_times.empty() ? o->times : o->gt_times);
+    const Trajectory gt = o->map_dir.empty() ? groundtruth(*o, o->gt_path) : in_map_frame(groundtruth(*o, o->gt_path), *o);
     eval::TrajectoryEvalConfig config;
     config.align = eval::parse_align_mode(o->align);
     config.align_first_n = o->align_first_n;

@@ -27,6 +27,7 @@ struct Options {
   std::string config_path;
   double realtime_speed = 0.0;
   std::string save_map;
+  std::string load_map;
 };
 
 void print_latency(const char* name, const std::vector<double>& samples_ms) {
@@ -71,6 +72,10 @@ void print_summary(const OfflineRunResult& r) {
               r.loop->candidates.size(), accepted);
   std::printf("loop detection + constraints ms: median %.2f p95 %.2f max %.2f; correction ms: median %.2f max %.2f\n",
               de.median_ms, de.p95_ms, de.max_ms, co.median_ms, co.max_ms);
+  if (r.loop->relocalized_t_ns) {
+    std::printf("re-localized in the map at t_ns %lld; %zu map loops in the graph\n",
+                static_cast<long long>(*r.loop->relocalized_t_ns), r.loop->map_loops);
+  }
 }
 
 vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and write trajectories and timings",
@@ -88,12 +93,17 @@ vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and writ
       ->check(CLI::PositiveNumber);
   app.add_option("--save-map", o->save_map,
                  "Also write the map re-localization needs to this folder (vil with loop closure; docs/formats.md)");
+  app.add_option("--load-map", o->load_map,
+                 "Re-localize in this saved map and give the LiDAR poses in its frame once there (vil with loop "
+                 "closure; docs/loop.md, \"Map reuse\")")
+      ->excludes("--save-map");
   return [o, bag_args]() {
     OfflineRunConfig config = o->config_path.empty() ? OfflineRunConfig{} : load_run_config(o->config_path);
     config.mode = parse_run_mode(o->mode);
     if (!o->save_map.empty() && (config.mode != RunMode::kVil || !config.loop.enabled)) {
       throw InputError("--save-map", "a map needs --mode vil with loop closure enabled (its key frames)");
     }
+    config.load_map = o->load_map;
     config.realtime.speed = o->realtime_speed;
     const auto reader = open_dataset(o->dataset, vilslam::cli::dataset_options(*bag_args));
     OfflineRunResult result;
@@ -114,6 +124,9 @@ vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and writ
                   map.poses.size());
     }
     print_summary(result);
+    if (!config.load_map.empty() && !result.loop->relocalized_t_ns) {
+      std::printf("not re-localized in %s: every pose is in the run's own frame\n", config.load_map.c_str());
+    }
     std::printf("wrote %s\n", o->out_dir.c_str());
     return 0;
   };

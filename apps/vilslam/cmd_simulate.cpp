@@ -11,6 +11,9 @@ struct Options {
   std::string scenario;
   std::string out;
   std::uint64_t seed = 0;
+  std::uint64_t world_seed = 0;
+  double route_start = 0;
+  double route_offset_m = 0;
   double length_m = 0;
   double duration_s = 0;
   bool preview = false;
@@ -30,6 +33,14 @@ vilslam::cli::Command reg("simulate", "Simulate a scenario as a stereo + IMU + L
       ->check(CLI::IsMember({"highbay", "hallway", "tunnel", "loop", "outdoor", "room"}));
   app.add_option("--out", o->out, "Output dataset folder")->required();
   app.add_option("--seed", o->seed, "Random seed (world, noise)")->capture_default_str();
+  auto* world_seed = app.add_option("--world-seed", o->world_seed,
+                                    "Build the world from this seed instead (the same world, other noise)");
+  auto* route_start = app.add_option("--route-start", o->route_start,
+                                     "Start this fraction of the route's length along it (another start pose)")
+                          ->check(CLI::Range(0.0, 0.999));
+  auto* route_offset = app.add_option("--route-offset", o->route_offset_m,
+                                      "Fly the route shifted sideways by this many metres (left of travel when positive)")
+                           ->check(CLI::Range(-2.0, 2.0));
   auto* length = app.add_option("--length", o->length_m, "Route length in metres (default: the paper's)")
                      ->check(CLI::PositiveNumber);
   app.add_option("--duration", o->duration_s,
@@ -47,7 +58,7 @@ vilslam::cli::Command reg("simulate", "Simulate a scenario as a stereo + IMU + L
       ->check(CLI::IsMember({"vlp16", "hesai128", "mid360"}));
   app.add_flag("--report", o->report, "Print a table of the sequence and write DIR/report.json");
   app.add_flag("--overwrite", o->overwrite, "Replace an existing output folder");
-  return [o]() {
+  return [o, world_seed, route_start, route_offset]() {
     using namespace vilslam::sim;
     SimConfig config = o->config.empty() ? SimConfig{} : load_sim_config(o->config);
     if (!o->lidar.empty()) config.lidar = lidar_sensor(o->lidar);
@@ -55,8 +66,13 @@ vilslam::cli::Command reg("simulate", "Simulate a scenario as a stereo + IMU + L
     request.scenario = parse_scenario(o->scenario);
     if (!o->trajectory.empty() && request.scenario != Scenario::kRoom)
       throw vilslam::InputError(o->trajectory, "--trajectory flies recorded motion in the 'room' scenario only");
+    if (!o->trajectory.empty() && (route_start->count() > 0 || route_offset->count() > 0))
+      throw vilslam::InputError(o->trajectory, "--route-start and --route-offset vary the world's route, not a --trajectory");
     request.out_dir = o->out;
     request.seed = o->seed;
+    if (world_seed->count() > 0) request.world_seed = o->world_seed;
+    request.route_start = o->route_start;
+    request.route_offset_m = o->route_offset_m;
     request.length_m = o->length_m;
     request.duration_s = o->duration_s;
     request.preview = o->preview;

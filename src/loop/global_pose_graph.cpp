@@ -72,10 +72,24 @@ void GlobalPoseGraph::add_loop(std::size_t from_index, std::size_t to_index, con
   first_new_loop_pose_ = std::min(first_new_loop_pose_, lower_end(loop));
 }
 
+void GlobalPoseGraph::transform(const SE3& T_new_old) {
+  for (TimedPose& p : poses_) p.T_W_B = T_new_old * p.T_W_B;
+}
+
+void GlobalPoseGraph::add_map_loop(const SE3& T_W_from, std::size_t to_index, const SE3& T_from_to,
+                                   const Mat6& information) {
+  if (to_index >= poses_.size()) throw std::invalid_argument("global pose graph: map loop to a pose not added");
+  const RelativePoseConstraint loop{0, to_index, T_from_to, information, ConstraintKind::kLoop};
+  check_constraint({0, 1, T_from_to, information}, 2);  // the information: symmetric positive definite
+  map_loops_.push_back({T_W_from, loop});
+  first_new_loop_pose_ = 0;
+}
+
 // The last pose s <= the lowest end of the new loops that no loop spans (lower end < s < upper end). Every path
 // from a pose after s to a pose before it passes through s, and the factors are invariant to moving all poses
 // by one rigid transform, so holding s and everything before it fixed loses nothing.
 std::size_t GlobalPoseGraph::window_start() const {
+  if (!map_loops_.empty()) return 0;  // the map loops hold the gauge: no pose of this run is fixed
   std::size_t start = first_new_loop_pose_;
   for (bool moved = true; moved;) {
     moved = false;
@@ -89,8 +103,9 @@ std::size_t GlobalPoseGraph::window_start() const {
   return start;
 }
 
-// Sorted anchors of the window [start, last]: its two ends, every loop end in it, and every spacing-th pose,
-// the spacing at least config_.anchor_spacing and large enough to keep those below config_.max_anchors.
+// Sorted anchors of the window [start, last]: its two ends, every loop end in it (map loops: start is 0), and
+// every spacing-th pose, the spacing at least config_.anchor_spacing and large enough to keep those below
+// config_.max_anchors.
 std::vector<std::size_t> GlobalPoseGraph::select_anchors(std::size_t start, std::size_t& spacing) const {
   const std::size_t last = poses_.size() - 1;
   std::vector<std::size_t> anchors = {start, last};
@@ -100,6 +115,7 @@ std::vector<std::size_t> GlobalPoseGraph::select_anchors(std::size_t start, std:
       anchors.push_back(c.to_index);
     }
   }
+  for (const MapLoop& m : map_loops_) anchors.push_back(m.loop.to_index);
   const std::size_t length = last - start;
   spacing = std::max(config_.anchor_spacing, (length + config_.max_anchors - 1) / config_.max_anchors);
   for (std::size_t i = (start / spacing + 1) * spacing; i < last; i += spacing) anchors.push_back(i);
@@ -115,24 +131,30 @@ CorrectionSummary GlobalPoseGraph::optimize() {
   const std::size_t start = window_start();
   const std::vector<std::size_t> anchors = select_anchors(start, summary.anchor_spacing);
 
-  // The reduced graph: anchors (the window's first pose is its fixed gauge), one composed factor per chain
-  // between consecutive anchors, and the window's loops.
+  // The reduced graph: anchors (the window's first pose is its fixed gauge; with map loops the map poses are,
+  // placed before the anchors), one composed factor per chain between consecutive anchors, and the window's loops.
   PoseGraph reduced;
+  for (const MapLoop& m : map_loops_) reduced.add_pose(0, m.T_W_from, true);
+  const std::size_t first = reduced.poses().size();  // slot of anchors[0]
+  const auto slot = [&](std::size_t index) { return first + anchor_slot(anchors, index); };
   for (std::size_t a : anchors) reduced.add_pose(poses_[a].t_ns, poses_[a].T_W_B);
   for (std::size_t k = 0; k + 1 < anchors.size(); ++k) {
     const ComposedChain chain = compose_chain(odometry_, step_covariances_, anchors[k], anchors[k + 1]);
     const Mat6 information = chain.covariance.inverse();
-    reduced.add_constraint({k, k + 1, chain.T_a_b, 0.5 * (information + information.transpose()),
+    reduced.add_constraint({first + k, first + k + 1, chain.T_a_b, 0.5 * (information + information.transpose()),
                             ConstraintKind::kOdometry});
   }
   for (const RelativePoseConstraint& c : loops_) {
     if (lower_end(c) < start) continue;
-    reduced.add_constraint({anchor_slot(anchors, c.from_index), anchor_slot(anchors, c.to_index), c.T_from_to,
-                            c.information, ConstraintKind::kLoop});
+    reduced.add_constraint({slot(c.from_index), slot(c.to_index), c.T_from_to, c.information, ConstraintKind::kLoop});
+  }
+  for (std::size_t m = 0; m < map_loops_.size(); ++m) {
+    const RelativePoseConstraint& c = map_loops_[m].loop;
+    reduced.add_constraint({m, slot(c.to_index), c.T_from_to, c.information, ConstraintKind::kLoop});
   }
   if (config_.tilt_sigma_rad > 0.0) {
-    for (std::size_t k = 1; k < anchors.size(); ++k) {  // the window's first pose is fixed
-      if (up_L_[anchors[k]]) reduced.add_tilt({k, *up_L_[anchors[k]], config_.tilt_sigma_rad});
+    for (std::size_t k = map_loops_.empty() ? 1 : 0; k < anchors.size(); ++k) {  // a fixed first pose needs none
+      if (up_L_[anchors[k]]) reduced.add_tilt({first + k, *up_L_[anchors[k]], config_.tilt_sigma_rad});
     }
   }
   PoseGraphOptions options;
@@ -141,14 +163,14 @@ CorrectionSummary GlobalPoseGraph::optimize() {
   options.max_iterations = config_.max_iterations;
   const PoseGraphSummary solved = reduced.optimize(options);
 
-  for (std::size_t k = 0; k < anchors.size(); ++k) poses_[anchors[k]].T_W_B = reduced.poses()[k].T_W_B;
+  for (std::size_t k = 0; k < anchors.size(); ++k) poses_[anchors[k]].T_W_B = reduced.poses()[first + k].T_W_B;
   for (std::size_t k = 0; k + 1 < anchors.size(); ++k) {
     correct_chain_interior(odometry_, step_covariances_, anchors[k], anchors[k + 1], poses_);
   }
   first_new_loop_pose_ = kNone;
 
-  summary.variables = anchors.size() - 1;
-  summary.moved_poses = poses_.size() - 1 - start;
+  summary.variables = anchors.size() - (map_loops_.empty() ? 1 : 0);
+  summary.moved_poses = poses_.size() - (map_loops_.empty() ? 1 : 0) - start;
   summary.iterations = solved.iterations;
   summary.converged = solved.converged;
   summary.initial_cost = solved.initial_cost;

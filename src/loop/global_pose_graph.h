@@ -67,6 +67,14 @@ class GlobalPoseGraph {
   // or an information matrix that is not symmetric positive definite.
   void add_loop(std::size_t from_index, std::size_t to_index, const SE3& T_from_to, const Mat6& information);
 
+  // Re-localization in a loaded map (docs/loop.md, "Map reuse"). transform moves every pose rigidly,
+  // T_W_L <- T_new_old T_W_L (the factors do not change: they are relative). add_map_loop adds a loop from a
+  // map pose T_W_from that stays as it is to pose to_index; once the graph has one, every correction
+  // optimizes all poses, their gauge given by the map loops rather than by a fixed pose of this run.
+  void transform(const SE3& T_new_old);
+  void add_map_loop(const SE3& T_W_from, std::size_t to_index, const SE3& T_from_to, const Mat6& information);
+  std::size_t map_loops() const { return map_loops_.size(); }
+
   // Corrects every pose with the factors known now (nothing to do without a new loop). Deterministic.
   CorrectionSummary optimize();
 
@@ -87,6 +95,11 @@ class GlobalPoseGraph {
   Mat6List step_covariances_;  // of odometry_[i]
   std::vector<std::optional<Vec3>> up_L_;  // measured up direction per pose
   std::vector<RelativePoseConstraint> loops_;
+  struct MapLoop {
+    SE3 T_W_from;
+    RelativePoseConstraint loop;  // from_index unused
+  };
+  std::vector<MapLoop> map_loops_;
   std::size_t first_new_loop_pose_ = kNone;  // lowest pose touched by a loop added since the last optimize()
 };
 

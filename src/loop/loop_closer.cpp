@@ -1,6 +1,7 @@
 #include "loop/loop_closer.h"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -62,22 +63,46 @@ LoopCloser::LoopCloser(const LoopClosureConfig& config, const lidar::LidarConfig
   if (!vocabulary_ || vocabulary_->empty()) throw std::invalid_argument("LoopCloser needs a trained vocabulary");
 }
 
+void LoopCloser::load_map(std::vector<KeyFrame> key_frames, Trajectory poses) {
+  for (std::size_t i = 0; i < key_frames.size(); ++i) {
+    if (key_frames[i].pose_index >= poses.size()) {
+      throw std::invalid_argument("loop closer: map key frame " + std::to_string(i) + " has no pose");
+    }
+    key_frames[i].id = i;
+    map_database_.add(static_cast<std::int64_t>(i), key_frames[i].image.t_ns, key_frames[i].image.bow);
+  }
+  map_key_frames_ = std::move(key_frames);
+  map_poses_ = std::move(poses);
+}
+
+bool LoopCloser::verify_candidates(const std::vector<LoopCandidate>& candidates, const KeyFrame& v,
+                                   const CandidatePool& pool, const std::function<SE3(std::size_t)>& T_W_Lv_of_pose,
+                                   std::vector<LoopCandidateRecord>& records) const {
+  for (const LoopCandidate& c : candidates) {
+    records.push_back(verify(pool.key_frames[static_cast<std::size_t>(c.id)], v, c.score, pool, T_W_Lv_of_pose));
+    if (records.back().accepted()) return true;
+  }
+  return false;
+}
+
 std::vector<LoopCandidateRecord> LoopCloser::add_and_detect(KeyFrame key_frame,
                                                             const std::function<SE3(std::size_t)>& T_W_L_of_pose) {
   check_key_frame(key_frame, key_frames_.empty() ? 0 : key_frames_.back().image.t_ns, !key_frames_.empty());
   key_frame.id = key_frames_.size();
   const KeyFrame& v = key_frame;
+  const auto max_candidates = static_cast<std::size_t>(config_.max_bow_candidates);
   std::vector<LoopCandidateRecord> records;
-  // Loop detection: the BoW database of key images older than the time threshold (paper, "Loop detection").
+  // Loop detection: the BoW database of key images older than the time threshold (paper, "Loop detection"),
+  // at most one loop per query: the first accepted in BoW order.
   const std::vector<LoopCandidate> candidates =
-      database_.query(v.image.bow, v.image.t_ns, static_cast<std::size_t>(config_.max_bow_candidates),
-                      s_to_ns(config_.min_time_gap_s));
-  for (const LoopCandidate& c : candidates) {
-    const KeyFrame& u = key_frames_[static_cast<std::size_t>(c.id)];
-    LoopCandidateRecord r = verify(u, v, c.score, T_W_L_of_pose);
-    const bool accepted = r.accepted();
-    records.push_back(std::move(r));
-    if (accepted) break;  // at most one loop per query: the first accepted in BoW order
+      database_.query(v.image.bow, v.image.t_ns, max_candidates, s_to_ns(config_.min_time_gap_s));
+  const bool accepted = verify_candidates(candidates, v, {key_frames_, T_W_L_of_pose, false}, T_W_L_of_pose, records);
+  if (!accepted && !map_key_frames_.empty()) {
+    // A loaded map's key images: all of them, whatever their time (another run's clock).
+    const std::vector<LoopCandidate> in_map =
+        map_database_.query(v.image.bow, std::numeric_limits<TimeNs>::max(), max_candidates, 0);
+    const auto T_W_L_of_map_pose = [this](std::size_t i) { return map_poses_.at(i).T_W_B; };
+    verify_candidates(in_map, v, {map_key_frames_, T_W_L_of_map_pose, true}, T_W_L_of_pose, records);
   }
   database_.add(static_cast<std::int64_t>(key_frame.id), key_frame.image.t_ns, key_frame.image.bow);
   key_frames_.push_back(std::move(key_frame));
@@ -85,8 +110,10 @@ std::vector<LoopCandidateRecord> LoopCloser::add_and_detect(KeyFrame key_frame,
 }
 
 LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, double bow_score,
-                                       const std::function<SE3(std::size_t)>& T_W_L_of_pose) const {
+                                       const CandidatePool& pool,
+                                       const std::function<SE3(std::size_t)>& T_W_Lv_of_pose) const {
   LoopCandidateRecord r;
+  r.map_candidate = pool.from_map;
   r.query_key_frame = v.id;
   r.candidate_key_frame = u.id;
   r.query_pose_index = v.pose_index;
@@ -128,7 +155,8 @@ LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, dou
   r.T_Lu_Lv_epnp = lidar_constraint_from_camera(pnp.T_C0cur_C0prev, u.T_L_C0, v.T_L_C0);  // cur = v, prev = u
 
   // Refinement by ICP of the sparse LiDAR features, initialized at the visual constraint.
-  const lidar::FeatureMap map = candidate_map(key_frames_, u.id, config_.submap_half_width, lidar_.map, T_W_L_of_pose);
+  const lidar::FeatureMap map =
+      candidate_map(pool.key_frames, u.id, config_.submap_half_width, lidar_.map, pool.T_W_L_of_pose);
   const lidar::RegistrationResult icp = lidar::register_scan(v.features_L, map, r.T_Lu_Lv_epnp, lidar_.registration);
   r.T_Lu_Lv_icp = r.T_Lu_Lv = icp.T_W_L;
   r.icp_rms_m = icp.rms_residual_m;
@@ -143,16 +171,21 @@ LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, dou
   const PoseDifference epnp_icp = pose_difference(r.T_Lu_Lv_epnp, r.T_Lu_Lv_icp);
   r.epnp_icp_translation_m = epnp_icp.translation_m;
   r.epnp_icp_rotation_rad = epnp_icp.rotation_rad;
-  // Repeated-structure guard: the loop against the odometry's T_Lu_Lv, allowing drift along the path.
-  const SE3 T_W_Lu = T_W_L_of_pose(u.pose_index), T_W_Lv = T_W_L_of_pose(v.pose_index);
-  Vec3 p_prev_W = T_W_Lu.translation();
-  for (std::size_t j = u.id + 1; j < key_frames_.size(); ++j) {
-    const Vec3 p_W = T_W_L_of_pose(key_frames_[j].pose_index).translation();
-    r.path_length_m += (p_W - p_prev_W).norm();
-    p_prev_W = p_W;
+  // Repeated-structure guard: the loop against the odometry's T_Lu_Lv, allowing drift along the path. A map
+  // candidate has no path to this run: the allowance is the constant part, and before this run is in the
+  // map's frame there is nothing to compare with.
+  const SE3 T_W_Lu = pool.T_W_L_of_pose(u.pose_index), T_W_Lv = T_W_Lv_of_pose(v.pose_index);
+  const bool odometry_check = !pool.from_map || in_map_frame_;
+  if (!pool.from_map) {
+    Vec3 p_prev_W = T_W_Lu.translation();
+    for (std::size_t j = u.id + 1; j < key_frames_.size(); ++j) {
+      const Vec3 p_W = T_W_Lv_of_pose(key_frames_[j].pose_index).translation();
+      r.path_length_m += (p_W - p_prev_W).norm();
+      p_prev_W = p_W;
+    }
+    r.path_length_m += (T_W_Lv.translation() - p_prev_W).norm();
   }
-  r.path_length_m += (T_W_Lv.translation() - p_prev_W).norm();
-  r.odometry_disagreement_m = pose_difference(T_W_Lu.inverse() * T_W_Lv, r.T_Lu_Lv).translation_m;
+  if (odometry_check) r.odometry_disagreement_m = pose_difference(T_W_Lu.inverse() * T_W_Lv, r.T_Lu_Lv).translation_m;
 
   if (r.icp_matched_fraction < config_.icp_min_matched_fraction ||
       r.icp_inlier_fraction < config_.icp_min_inlier_fraction || r.icp_rms_m > config_.icp_max_rms_m) {
@@ -165,8 +198,8 @@ LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, dou
       r.epnp_icp_rotation_rad > config_.max_epnp_icp_rotation_rad) {
     return rejected(std::move(r), "epnp_icp_disagree");
   }
-  if (r.odometry_disagreement_m >
-      config_.max_odometry_disagreement_m + config_.max_odometry_disagreement_per_m * r.path_length_m) {
+  if (odometry_check && r.odometry_disagreement_m > config_.max_odometry_disagreement_m +
+                                                        config_.max_odometry_disagreement_per_m * r.path_length_m) {
     return rejected(std::move(r), "odometry_disagree");
   }
   // EPnP's information, from its reprojection Jacobians, moved into the key scans' frames, and ICP's, from its J^T J.

@@ -70,6 +70,12 @@ struct LoopClosureConfig {
   // Add the covariance of EPnP and ICP combined (their informations summed) to the sigmas above: a loop then
   // hardly constrains a direction neither measures well. false: the sigmas alone.
   bool loop_covariance_from_estimates = true;
+  // Re-localization in a loaded map (run --load-map; docs/loop.md, "Map reuse"): this run joins the map's
+  // frame once relocalization_loops map loops in a row, from different key frames, agree on where this run's
+  // frame lies in the map (each loop's T_map_run within the agreement of the one before).
+  int relocalization_loops = 2;
+  double relocalization_agreement_m = 0.3;
+  double relocalization_agreement_rad = 0.035;  // 2 degrees
 };
 
 // The `loop_closure:` section of a run config, bound to c's fields; validate after reading.
@@ -103,6 +109,9 @@ struct LoopCandidateRecord {
   SE3 T_Lu_Lv_icp;                       // ICP initialized at EPnP
   SE3 T_Lu_Lv;                           // the loop constraint (u = candidate, v = query): ICP, or fused with EPnP
   Mat6 information = Mat6::Identity();   // of T_Lu_Lv, [rho; phi]
+  // A candidate of a loaded map: candidate_key_frame and candidate_pose_index index the map's key frames and
+  // poses, candidate_t_ns is on the map's clock.
+  bool map_candidate = false;
   std::string rejected_by;
 
   bool accepted() const { return rejected_by.empty(); }
@@ -124,21 +133,46 @@ class LoopCloser {
   std::vector<LoopCandidateRecord> add_and_detect(KeyFrame key_frame,
                                                   const std::function<SE3(std::size_t)>& T_W_L_of_pose);
 
+  // A saved map's key frames and poses (loop/map_file.h): from now on every key frame's candidates not
+  // accepted among this run's own are looked for among them too, with no time threshold (another run). Until
+  // set_in_map_frame(true) this run's poses are in a frame of their own, so the odometry check skips them.
+  // Throws std::invalid_argument when a key frame's pose index is outside the poses.
+  void load_map(std::vector<KeyFrame> key_frames, Trajectory poses);
+  // This run's poses (T_W_L_of_pose) are now in the map's frame: its candidates get the odometry check, with
+  // config.max_odometry_disagreement_m as the allowance.
+  void set_in_map_frame(bool in_map_frame) { in_map_frame_ = in_map_frame; }
+  const std::vector<KeyFrame>& map_key_frames() const { return map_key_frames_; }
+  const Trajectory& map_poses() const { return map_poses_; }
+
   const std::vector<KeyFrame>& key_frames() const { return key_frames_; }
   // Hands the key frames over (to a saved map) once no more will be added; the closer keeps none.
   std::vector<KeyFrame> release_key_frames() { return std::move(key_frames_); }
   const LoopClosureConfig& config() const { return config_; }
 
  private:
-  // Runs the stages on candidate u of query v and stops at the first that fails.
-  LoopCandidateRecord verify(const KeyFrame& u, const KeyFrame& v, double bow_score,
-                             const std::function<SE3(std::size_t)>& T_W_L_of_pose) const;
+  // Where candidates come from: this run's key frames, or a loaded map's.
+  struct CandidatePool {
+    const std::vector<KeyFrame>& key_frames;
+    std::function<SE3(std::size_t)> T_W_L_of_pose;  // of the pool's pose indices
+    bool from_map = false;
+  };
+  // Runs the stages on candidate u of query v and stops at the first that fails. T_W_Lv_of_pose: this run's poses.
+  LoopCandidateRecord verify(const KeyFrame& u, const KeyFrame& v, double bow_score, const CandidatePool& pool,
+                             const std::function<SE3(std::size_t)>& T_W_Lv_of_pose) const;
+  // Verifies candidates in BoW order and appends their records; true when one was accepted (the last record).
+  bool verify_candidates(const std::vector<LoopCandidate>& candidates, const KeyFrame& v, const CandidatePool& pool,
+                         const std::function<SE3(std::size_t)>& T_W_Lv_of_pose,
+                         std::vector<LoopCandidateRecord>& records) const;
 
   LoopClosureConfig config_;
   lidar::LidarConfig lidar_;
   std::shared_ptr<const Vocabulary> vocabulary_;
   BowDatabase database_;
   std::vector<KeyFrame> key_frames_;
+  BowDatabase map_database_;
+  std::vector<KeyFrame> map_key_frames_;
+  Trajectory map_poses_;
+  bool in_map_frame_ = false;
 };
 
 }  // namespace vilslam::loop

@@ -46,6 +46,9 @@ YamlFields loop_closure_yaml_fields(LoopClosureConfig& c) {
       yaml_value("loop_sigma_m", c.loop_sigma_m),
       yaml_value("loop_sigma_rad", c.loop_sigma_rad),
       yaml_value("loop_covariance_from_estimates", c.loop_covariance_from_estimates),
+      yaml_value("relocalization_loops", c.relocalization_loops),
+      yaml_value("relocalization_agreement_m", c.relocalization_agreement_m),
+      yaml_value("relocalization_agreement_rad", c.relocalization_agreement_rad),
   };
 }
 
@@ -61,6 +64,9 @@ void validate_loop_closure_config(const LoopClosureConfig& c, const std::string&
   require(k.max_image_scan_gap_s >= 0, "key_frames.max_image_scan_gap_s must not be negative");
   require(c.min_time_gap_s >= 0, "min_time_gap_s must not be negative");
   require(c.max_bow_candidates >= 1, "max_bow_candidates must be at least 1");
+  require(c.relocalization_loops >= 1, "relocalization_loops must be at least 1");
+  require(c.relocalization_agreement_m > 0 && c.relocalization_agreement_rad > 0,
+          "relocalization_agreement_m and relocalization_agreement_rad must be positive");
   require(c.min_bow_score >= 0 && c.min_bow_score <= 1, "min_bow_score must be in [0, 1]");
   require(c.descriptor_matching.max_distance >= 0 && c.descriptor_matching.max_distance <= 256,
           "descriptor_matching.max_distance must be in [0, 256]");

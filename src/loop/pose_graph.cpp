@@ -70,8 +70,9 @@ ResidualStats residual_stats(const Trajectory& poses, const std::vector<Relative
 
 }  // namespace
 
-std::size_t PoseGraph::add_pose(TimeNs t_ns, const SE3& T_W_L) {
+std::size_t PoseGraph::add_pose(TimeNs t_ns, const SE3& T_W_L, bool fixed) {
   poses_.push_back({t_ns, T_W_L});
+  fixed_.push_back(fixed || poses_.size() == 1);
   return poses_.size() - 1;
 }
 
@@ -114,7 +115,9 @@ PoseGraphSummary PoseGraph::optimize(const PoseGraphOptions& options) {
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<TiltFactor, 3, kPoseBlockSize>(new TiltFactor(t.up_L, t.sigma_rad)),
                              nullptr, blocks[t.index].data());
   }
-  problem.SetParameterBlockConstant(blocks.front().data());
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    if (fixed_[i]) problem.SetParameterBlockConstant(blocks[i].data());
+  }
 
   ceres::Solver::Options solver_options;
   solver_options.minimizer_type = ceres::TRUST_REGION;

@@ -63,15 +63,16 @@ struct PoseGraphSummary {
 
 class PoseGraph {
  public:
-  // Returns the index of the new pose. t_ns is carried to the output only.
-  std::size_t add_pose(TimeNs t_ns, const SE3& T_W_L);
+  // Returns the index of the new pose. t_ns is carried to the output only. A fixed pose is held at T_W_L
+  // (pose 0 always is: the gauge); more fixed poses are known ones, e.g. a loaded map's.
+  std::size_t add_pose(TimeNs t_ns, const SE3& T_W_L, bool fixed = false);
   // Throws std::invalid_argument on an index out of range, from == to, or an information matrix that is
   // not symmetric positive definite.
   void add_constraint(const RelativePoseConstraint& constraint);
   // Throws std::invalid_argument on an index out of range, a non-positive sigma or a non-finite or zero up_L.
   void add_tilt(const TiltConstraint& tilt);
 
-  // Optimizes all poses from their current values; pose 0 stays fixed.
+  // Optimizes all poses from their current values; pose 0 and the fixed ones stay.
   PoseGraphSummary optimize(const PoseGraphOptions& options = {});
 
   const Trajectory& poses() const { return poses_; }
@@ -79,6 +80,7 @@ class PoseGraph {
 
  private:
   Trajectory poses_;
+  std::vector<bool> fixed_;
   std::vector<RelativePoseConstraint> constraints_;
   std::vector<TiltConstraint> tilts_;
 };

@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <limits>
 
+#include "loop/loop_constraint.h"
+
 namespace vilslam {
 namespace {
 
@@ -24,6 +26,12 @@ LoopClosureModule::LoopClosureModule(const loop::LoopClosureConfig& config,
       frontend_config_(frontend_config), imu_motion_(imu_motion), map_radius_m_(lidar.map.edges.max_distance_m),
       graph_(graph_config) {
   if (config_.enabled) closer_.emplace(config_, lidar, vocabulary_);
+}
+
+void LoopClosureModule::load_map(loop::SavedMap map) {
+  if (!closer_) throw std::invalid_argument("loading a map needs loop closure enabled");
+  if (graph_.size() > 0) throw std::invalid_argument("a map is loaded before the first sweep");
+  closer_->load_map(std::move(map.key_frames), std::move(map.poses));
 }
 
 void LoopClosureModule::stereo(const StereoFrame& frame) {
@@ -81,6 +89,10 @@ void LoopClosureModule::add_key_frame(const PendingKeyScan& scan, const StereoFr
   for (const loop::LoopCandidateRecord& r : records) {
     out_.candidates.push_back(r);
     if (!r.accepted()) continue;
+    if (r.map_candidate) {
+      loop_found = add_map_loop(r) || loop_found;
+      continue;
+    }
     graph_.add_loop(r.candidate_pose_index, r.query_pose_index, r.T_Lu_Lv, r.information);
     loop_found = true;
   }
@@ -95,15 +107,51 @@ void LoopClosureModule::add_key_frame(const PendingKeyScan& scan, const StereoFr
   corrected_ = true;
 }
 
+bool LoopClosureModule::add_map_loop(const loop::LoopCandidateRecord& r) {
+  const auto T_map_Lu = [this](const loop::LoopCandidateRecord& loop) {
+    return closer_->map_poses()[loop.candidate_pose_index].T_W_B;
+  };
+  if (relocalized()) {
+    graph_.add_map_loop(T_map_Lu(r), r.query_pose_index, r.T_Lu_Lv, r.information);
+    ++out_.map_loops;
+    return true;
+  }
+  // Where this run's frame lies in the map by this loop: T_map_run = T_map_Lu T_Lu_Lv (T_run_Lv)^-1.
+  const SE3 T_map_run = T_map_Lu(r) * r.T_Lu_Lv * graph_.pose(r.query_pose_index).inverse();
+  const bool agrees = relocalization_ && [&] {
+    const loop::PoseDifference d = loop::pose_difference(relocalization_->T_map_run, T_map_run);
+    return d.translation_m <= config_.relocalization_agreement_m && d.rotation_rad <= config_.relocalization_agreement_rad;
+  }();
+  if (!agrees) relocalization_ = Relocalization{};
+  relocalization_->T_map_run = T_map_run;
+  relocalization_->loops.push_back(r);
+  if (static_cast<int>(relocalization_->loops.size()) < config_.relocalization_loops) return false;
+  // Re-localized: the graph moves into the map's frame by the latest vote and takes the agreeing loops.
+  graph_.transform(T_map_run);
+  for (const loop::LoopCandidateRecord& loop : relocalization_->loops) {
+    graph_.add_map_loop(T_map_Lu(loop), loop.query_pose_index, loop.T_Lu_Lv, loop.information);
+  }
+  out_.map_loops += relocalization_->loops.size();
+  out_.relocalized_t_ns = r.query_t_ns;
+  out_.T_map_run = T_map_run;
+  relocalization_.reset();
+  closer_->set_in_map_frame(true);
+  return true;
+}
+
 MapCorrection LoopClosureModule::correction_at(std::size_t pose_index) const {
   MapCorrection c;
   c.T_W_L_last = graph_.pose(pose_index);
-  for (const loop::KeyFrame& kf : closer_->key_frames()) {
-    const SE3& T_W_L = graph_.pose(kf.pose_index);
+  const auto add_if_near = [&](const loop::KeyFrame& kf, const SE3& T_W_L) {
     if ((T_W_L.translation() - c.T_W_L_last.translation()).norm() <= map_radius_m_) {
       c.key_scans.push_back({&kf.features_L, T_W_L});
     }
+  };
+  // Once re-localized, the saved key scans around the pose join this run's (all in the map's frame).
+  if (relocalized()) {
+    for (const loop::KeyFrame& kf : closer_->map_key_frames()) add_if_near(kf, closer_->map_poses()[kf.pose_index].T_W_B);
   }
+  for (const loop::KeyFrame& kf : closer_->key_frames()) add_if_near(kf, graph_.pose(kf.pose_index));
   return c;
 }
 

@@ -19,6 +19,7 @@
 #include "lidar/lidar_mapper.h"
 #include "loop/global_pose_graph.h"
 #include "loop/loop_closer.h"
+#include "loop/map_file.h"
 
 namespace vilslam {
 
@@ -32,6 +33,12 @@ struct LoopClosureOutput {
   std::vector<double> key_frame_ms;   // key image extraction per key frame
   std::vector<double> detection_ms;   // detection + constraints (LoopCloser::add_and_detect) per key frame
   std::vector<double> correction_ms;  // graph optimization + map rebuild per accepted loop
+  // With a loaded map (load_map): when this run joined the map's frame (re-localization; none: it never did,
+  // and every output is in the run's own frame), where the run's frame lay in the map then, and the loops
+  // to the map's key frames in the graph.
+  std::optional<TimeNs> relocalized_t_ns;
+  SE3 T_map_run;
+  std::size_t map_loops = 0;
 };
 
 // What LiDAR mapping must do after a loop: resume from T_W_L_last on a map rebuilt from the key scans.
@@ -49,6 +56,14 @@ class LoopClosureModule {
                     std::shared_ptr<const Vocabulary> vocabulary, const RigCalibration& calib,
                     const FrontendConfig& frontend_config, const lidar::LidarConfig& lidar,
                     const Trajectory* imu_motion);
+
+  // A saved map to re-localize in (docs/loop.md, "Map reuse"), before the first sweep: its key frames become
+  // loop candidates of every key frame; once relocalization_loops map loops agree, the graph moves into the
+  // map's frame, the map loops join it as factors from the fixed map poses, and LiDAR mapping resumes on a
+  // map that holds the saved key scans around it. Until then every output is in the run's own frame.
+  // Throws std::invalid_argument with loop closure disabled or after the first sweep.
+  void load_map(loop::SavedMap map);
+  bool relocalized() const { return out_.relocalized_t_ns.has_value(); }
 
   // A stereo pair, its time already on the IMU clock. Completes a key frame waiting for its key image.
   void stereo(const StereoFrame& frame);
@@ -76,6 +91,9 @@ class LoopClosureModule {
   // Builds the key frame of the pending key scan with the stereo pair, detects loops, corrects the graph.
   void add_key_frame(const PendingKeyScan& scan, const StereoFrame& frame);
   MapCorrection correction_at(std::size_t pose_index) const;
+  // An accepted loop to a map key frame: a factor once re-localized, else a vote for where this run's frame
+  // lies in the map, which re-localizes when enough in a row agree. True when the graph has a new map loop.
+  bool add_map_loop(const loop::LoopCandidateRecord& r);
 
   loop::LoopClosureConfig config_;
   std::shared_ptr<const Vocabulary> vocabulary_;
@@ -93,6 +111,11 @@ class LoopClosureModule {
   SE3 T_odometry_mapper_;                  // lidar_odometry = T_odometry_mapper_ * mapper output
   bool corrected_ = false;
   std::optional<std::size_t> last_key_index_;  // graph index of the last key scan
+  struct Relocalization {                      // map loops in a row that agree on T_map_run
+    SE3 T_map_run;
+    std::vector<loop::LoopCandidateRecord> loops;
+  };
+  std::optional<Relocalization> relocalization_;
   LoopClosureOutput out_;
 };
 

@@ -118,6 +118,31 @@ std::string time_offset_json(const TimeOffsetEstimate& e) {
   return json.str();
 }
 
+// Whether and when the run re-localized in the loaded map, where its own frame lay in the map's then (T_map_run:
+// translation and quaternion x y z w, as TUM rows), and the map candidates examined and accepted.
+std::string relocalization_json(const std::string& map_dir, const LoopClosureOutput& loop,
+                                const std::vector<loop::LoopCandidateRecord>& map_candidates) {
+  std::size_t accepted = 0;
+  for (const loop::LoopCandidateRecord& c : map_candidates) accepted += c.accepted() ? 1 : 0;
+  JsonWriter json;
+  json.begin_object();
+  json.key("map").value(map_dir);
+  json.key("relocalized").value(loop.relocalized_t_ns.has_value());
+  if (loop.relocalized_t_ns) {
+    json.key("relocalized_t_ns").value(static_cast<std::int64_t>(*loop.relocalized_t_ns));
+    const Vec3& t = loop.T_map_run.translation();
+    const Quat& q = loop.T_map_run.quat();
+    json.key("T_map_run").begin_array();
+    for (double v : {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()}) json.value(v);
+    json.end_array();
+  }
+  json.key("map_candidates").value(static_cast<std::uint64_t>(map_candidates.size()));
+  json.key("map_candidates_accepted").value(static_cast<std::uint64_t>(accepted));
+  json.key("map_loops_in_graph").value(static_cast<std::uint64_t>(loop.map_loops));
+  json.end_object();
+  return json.str();
+}
+
 // One row per mapped sweep: t_ns, degenerate (0/1), the six eigenvalues of J^T J in ascending order, and
 // the registration's fit (rms residual, matched and inlier fractions).
 std::string degeneracy_csv(const std::vector<lidar::LidarMappingResult>& mapped) {
@@ -154,8 +179,15 @@ void write_run_outputs(const std::string& out_dir, const OfflineRunConfig& confi
       write_trajectory((partial / "lidar.tum").string(), result.loop->lidar_odometry, TrajectoryFormat::kTum);
       write_trajectory((partial / "lidar_global.tum").string(), result.loop->lidar_global, TrajectoryFormat::kTum);
       write_trajectory((partial / "lidar_final.tum").string(), result.loop->lidar_final, TrajectoryFormat::kTum);
-      write_file_atomic((partial / "loops.csv").string(), loop::loops_csv(result.loop->candidates));
-      write_file_atomic((partial / "loop_candidates.csv").string(), loop::loop_candidates_csv(result.loop->candidates));
+      // This run's loops; a loaded map's candidates apart (their times are on the map's clock).
+      std::vector<loop::LoopCandidateRecord> own, in_map;
+      for (const loop::LoopCandidateRecord& c : result.loop->candidates) (c.map_candidate ? in_map : own).push_back(c);
+      write_file_atomic((partial / "loops.csv").string(), loop::loops_csv(own));
+      write_file_atomic((partial / "loop_candidates.csv").string(), loop::loop_candidates_csv(own));
+      if (!config.load_map.empty()) {
+        write_file_atomic((partial / "map_candidates.csv").string(), loop::loop_candidates_csv(in_map));
+        write_file_atomic((partial / "relocalization.json").string(), relocalization_json(config.load_map, *result.loop, in_map));
+      }
     } else {
       Trajectory T_W_L;
       for (const lidar::LidarMappingResult& m : result.lidar) T_W_L.push_back({m.t_ns, m.T_W_L});

@@ -36,6 +36,9 @@ struct OfflineRunConfig {
   loop::LoopClosureConfig loop;         // vil mode only (it needs key images)
   loop::GlobalPoseGraphConfig graph;
   std::string vocabulary = "default";   // a vocabulary file, or "default": default_vocabulary_path()
+  // vil with loop closure: a saved map (loop/map_file.h) to re-localize in (docs/loop.md, "Map reuse"); not
+  // part of the run YAML (run --load-map).
+  std::string load_map;
   TimeOffsetConfig time_offset;          // vio and vil: estimate the camera-IMU time offset before the run
   bool threads = true;  // the frontend, the smoother and the LiDAR side each on a thread (same output as without)
   RealtimeConfig realtime;  // speed 0: offline (deterministic); > 0: events on the wall clock (pipeline/realtime.h)

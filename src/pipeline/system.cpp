@@ -9,6 +9,7 @@
 
 #include "common/error.h"
 #include "frontend/frontend.h"
+#include "loop/map_file.h"
 #include "pipeline/lidar_feeder.h"
 #include "pipeline/live_propagator.h"
 #include "pipeline/stage.h"
@@ -57,6 +58,11 @@ class LidarSide {
         vocabulary = std::make_shared<const Vocabulary>(Vocabulary::load(vocabulary_file(config.vocabulary)));
       }
       loop_.emplace(config.loop, config.graph, vocabulary, calib, config.frontend, config.lidar.lidar, &imu_motion_);
+      if (!config.load_map.empty()) {
+        loop::SavedMap map = loop::load_map(config.load_map);
+        loop::check_map_fits(map, config.load_map, loop::vocabulary_identity(vocabulary_file(config.vocabulary)), calib);
+        loop_->load_map(std::move(map));
+      }
     }
     lidar_.emplace(config.lidar, calib, with_vio ? &imu_poses_ : nullptr, with_vio ? &imu_motion_ : nullptr,
                    &result->lidar, loop_ ? &*loop_ : nullptr);
@@ -218,6 +224,9 @@ struct System::Impl {
     const bool with_vio = config.mode != RunMode::kLidarOnly;
     if (config.mode != RunMode::kVio && !calib.has_lidar) {
       throw InputError("rig calibration", "mode " + run_mode_name(config.mode) + " needs a LiDAR calibration");
+    }
+    if (!config.load_map.empty() && (config.mode != RunMode::kVil || !config.loop.enabled)) {
+      throw InputError(config.load_map, "a map is re-localized in by mode vil with loop closure enabled");
     }
     shared.callbacks = std::move(callbacks);
     if (with_vio && shared.callbacks.imu_pose) {

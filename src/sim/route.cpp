@@ -96,6 +96,33 @@ void scale_to_length(Polygon2* corners, double radius_m, double length_m) {
   for (auto& c : *corners) c *= scale;
 }
 
+std::vector<Vec3> varied_route(const std::vector<Vec3>& route_W, double start_fraction, double lateral_m) {
+  if (start_fraction == 0.0 && lateral_m == 0.0) return route_W;
+  const std::size_t n = route_W.size() - 1;  // distinct waypoints (first == last)
+  std::vector<Vec3> shifted(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    // The horizontal direction of travel at waypoint i, from its two neighbours on the closed route.
+    const Vec3 along = route_W[(i + 1) % n] - route_W[(i + n - 1) % n];
+    const Vec3 left = Vec3(-along.y(), along.x(), 0.0).normalized();
+    shifted[i] = route_W[i] + lateral_m * left;
+  }
+  std::vector<double> cumulative(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) cumulative[i + 1] = cumulative[i] + (shifted[(i + 1) % n] - shifted[i]).norm();
+  const double s = start_fraction * cumulative[n];
+  std::size_t k = 0;
+  while (k + 1 < n && cumulative[k + 1] <= s) ++k;
+  const double alpha = (s - cumulative[k]) / (cumulative[k + 1] - cumulative[k]);
+  const Vec3 start = (1.0 - alpha) * shifted[k] + alpha * shifted[(k + 1) % n];
+  std::vector<Vec3> out = {start};
+  for (std::size_t j = 1; j <= n; ++j) {
+    const Vec3& p = shifted[(k + j) % n];
+    if ((p - out.back()).norm() > 1e-9) out.push_back(p);
+  }
+  if ((out.back() - start).norm() > 1e-9) out.push_back(start);
+  out.back() = start;
+  return out;
+}
+
 double polyline_length(const std::vector<Vec3>& points) {
   double length = 0;
   for (std::size_t i = 1; i < points.size(); ++i) length += (points[i] - points[i - 1]).norm();

@@ -26,6 +26,11 @@ double rounded_loop_length(const Polygon2& corners, double radius_m);
 // Scales the polygon about the origin so that its rounded loop has length_m.
 void scale_to_length(Polygon2* corners, double radius_m, double length_m);
 
+// Another route through the same world (map reuse: docs/simulator.md, "Another route"): the closed route
+// started start_fraction of its length along (in [0, 1)) and shifted lateral_m to the left of the direction
+// of travel (horizontally; to the right when negative). Both 0: the route unchanged.
+std::vector<Vec3> varied_route(const std::vector<Vec3>& route_W, double start_fraction, double lateral_m);
+
 // Length of a polyline.
 double polyline_length(const std::vector<Vec3>& points);
 

@@ -16,6 +16,7 @@
 #include "sim/imu_stream_noise.h"
 #include "sim/kitti_writer.h"
 #include "sim/lidar_sim.h"
+#include "sim/route.h"
 #include "sim/scan_degeneracy.h"
 
 namespace vilslam::sim {
@@ -32,13 +33,13 @@ std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t stream, std::uint64_t i
   return z ^ (z >> 31);
 }
 
-struct Scene {
+struct FlownScene {
   World world;
   std::unique_ptr<BodyMotion> motion;
 };
 
 // A recorded ground truth cut to its first duration_s (0: whole), the room grown around what is flown.
-Scene recorded_flight_scene(const SimConfig& config, const SimulateRequest& request) {
+FlownScene recorded_flight_scene(const SimConfig& config, const SimulateRequest& request) {
   Trajectory poses = read_trajectory(request.trajectory_path, TrajectoryFormat::kTum);
   if (request.duration_s > 0 && !poses.empty()) {
     const TimeNs end_ns = poses.front().t_ns + s_to_ns(request.duration_s);
@@ -50,14 +51,18 @@ Scene recorded_flight_scene(const SimConfig& config, const SimulateRequest& requ
                                                   std::string(request.duration_s > 0 ? " within --duration" : ""));
   Eigen::AlignedBox3d flight_W;
   for (const TimedPose& pose : poses) flight_W.extend(pose.T_W_B.translation());
-  Scene scene{World::generate(request.scenario, request.seed, std::max(0.0, request.length_m), flight_W), nullptr};
+  FlownScene scene{World::generate(request.scenario, request.world_seed.value_or(request.seed), std::max(0.0, request.length_m),
+                              flight_W),
+              nullptr};
   scene.motion = std::make_unique<PoseSplineMotion>(poses, config.pose_spline);
   return scene;
 }
 
+constexpr double kMinRouteClearanceM = 0.3;  // a varied route's waypoints from any surface (the rig's size)
+
 // The world and the motion through it: a recorded ground truth, or the world's closed route flown at
 // the configured speed (or at the speed that makes it last request.duration_s).
-Scene make_scene(const SimConfig& config, const SimulateRequest& request) {
+FlownScene make_scene(const SimConfig& config, const SimulateRequest& request) {
   if (!request.trajectory_path.empty()) return recorded_flight_scene(config, request);
   RouteMotionConfig motion_config = route_motion_config(config, request.scenario);
   const double min_duration_s = motion_config.rest_start_s + motion_config.rest_end_s + motion_config.ramp_s;
@@ -67,13 +72,21 @@ Scene make_scene(const SimConfig& config, const SimulateRequest& request) {
   if (request.duration_s > 0 && length_m <= 0)
     length_m = motion_config.cruise_speed_m_s *
                (request.duration_s - motion_config.rest_start_s - motion_config.rest_end_s - motion_config.ramp_s);
-  Scene scene{World::generate(request.scenario, request.seed, std::max(0.0, length_m)), nullptr};
+  FlownScene scene{World::generate(request.scenario, request.world_seed.value_or(request.seed), std::max(0.0, length_m)),
+              nullptr};
+  const std::vector<Vec3> route_W = varied_route(scene.world.route_W(), request.route_start, request.route_offset_m);
+  for (const Vec3& p_W : route_W) {
+    if (scene.world.distance_to_surface(p_W) < kMinRouteClearanceM) {
+      throw InputError("--route-offset", "the shifted route passes within " + std::to_string(kMinRouteClearanceM) +
+                                             " m of a surface; choose a smaller offset");
+    }
+  }
   if (request.duration_s > 0) {
-    const RouteMotion probe(scene.world.route_W(), motion_config);
+    const RouteMotion probe(route_W, motion_config);
     motion_config.cruise_speed_m_s =
         RouteMotion::cruise_speed_for_duration(probe.length_m(), request.duration_s, motion_config);
   }
-  scene.motion = std::make_unique<RouteMotion>(scene.world.route_W(), motion_config);
+  scene.motion = std::make_unique<RouteMotion>(route_W, motion_config);
   return scene;
 }
 
@@ -84,7 +97,7 @@ struct ImuStream {
 };
 
 // Re-expresses a recorded motion as the pose of the real IMU (sim/imu_alignment.h) and logs the alignment.
-void align_to_real_imu(Scene& scene, const std::vector<ImuSample>& samples) {
+void align_to_real_imu(FlownScene& scene, const std::vector<ImuSample>& samples) {
   const ImuAlignment a = align_imu_to_motion(*scene.motion, samples);
   const double body_deg = so3::log(a.R_B_I).norm() * 180.0 / kPi;
   const double tilt_deg = std::acos(std::clamp(-a.gravity_V_m_s2.normalized().z(), -1.0, 1.0)) * 180.0 / kPi;
@@ -100,7 +113,7 @@ void align_to_real_imu(Scene& scene, const std::vector<ImuSample>& samples) {
 
 // The IMU and the ground truth at its timestamps: simulated, or a real stream restricted to the motion
 // (which is then re-expressed as the real IMU's pose).
-ImuStream make_imu(const SimConfig& config, const SimulateRequest& request, Scene& scene) {
+ImuStream make_imu(const SimConfig& config, const SimulateRequest& request, FlownScene& scene) {
   const BodyMotion& motion = *scene.motion;
   ImuStream out;
   // A preview of a route skips the initial rest: it starts at rest and sets off.
@@ -137,7 +150,7 @@ ImuStream make_imu(const SimConfig& config, const SimulateRequest& request, Scen
 }
 
 // Stereo frames at the camera rate over [t0, t1], rendered in parallel batches and written in order.
-void write_frames(const SimConfig& config, const SimulateRequest& request, const Scene& scene, const RigCalibration& calib,
+void write_frames(const SimConfig& config, const SimulateRequest& request, const FlownScene& scene, const RigCalibration& calib,
                   const ImuStream& imu, DatasetWriter& writer, SequenceReport& report,
                   const std::function<void(double)>& progress) {
   const TimeNs period_ns = s_to_ns(1.0 / config.camera.rate_hz);
@@ -186,7 +199,7 @@ void write_frames(const SimConfig& config, const SimulateRequest& request, const
 
 // Sweeps whose whole period lies in [t0, t1], simulated in parallel batches, written in order to the
 // dataset and to the KITTI copy.
-void write_scans(const SimConfig& config, const SimulateRequest& request, const Scene& scene, const RigCalibration& calib,
+void write_scans(const SimConfig& config, const SimulateRequest& request, const FlownScene& scene, const RigCalibration& calib,
                  const ImuStream& imu, DatasetWriter& writer, KittiWriter& kitti, SequenceReport& report,
                  const std::function<void(double)>& progress) {
   const TimeNs period_ns = s_to_ns(1.0 / config.lidar.rate_hz);
@@ -233,7 +246,7 @@ void write_tum_copy(const std::vector<GroundTruthState>& states, const fs::path&
 }  // namespace
 
 SequenceReport simulate(const SimConfig& config, const SimulateRequest& request) {
-  Scene scene = make_scene(config, request);
+  FlownScene scene = make_scene(config, request);
   RigCalibration calib = rig_calibration(config);
   const ImuStream imu = make_imu(config, request, scene);
   if (!request.imu_path.empty()) {

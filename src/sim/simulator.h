@@ -3,6 +3,7 @@
 // project's folder format (with ground truth, the reference model and a KITTI copy of the scans).
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "sim/sim_config.h"
@@ -15,6 +16,9 @@ struct SimulateRequest {
   Scenario scenario = Scenario::kHighbay;
   std::string out_dir;
   std::uint64_t seed = 0;
+  std::optional<std::uint64_t> world_seed;  // builds the world from this, not seed: the same world, other noise
+  double route_start = 0;       // start this fraction of the route's length along it, in [0, 1)
+  double route_offset_m = 0;    // fly the route shifted sideways by this much (left of travel when positive)
   double length_m = 0;          // route length; 0: the scenario's preset (or what duration_s implies)
   double duration_s = 0;        // > 0: size the route so the closed trajectory lasts this long
   bool preview = false;         // only the first config.preview_duration_s seconds, coarse model
