@@ -355,6 +355,35 @@ TEST(GlobalPoseGraph, TiltFactorsKeepTheRouteLevelThroughALoop) {
 
 // The composed covariance is the first-order propagation: sum_i J_i Sigma J_i^T with J_i the derivative of the
 // chain's error Log(Z_ab^-1 prod_j Z_j Exp(eps_j)) by eps_i, here by central differences.
+// Re-localization in a saved map (docs/loop.md, "Map reuse"): the drifted square fed in a frame of its own,
+// moved into the map's by transform(), then held by loops from three map poses (fixed, not graph poses) to poses
+// that are not on the anchor spacing: the drift goes, and each map loop holds the very pose it names.
+TEST(GlobalPoseGraph, MapLoopsBringTheRunIntoTheMapsFrame) {
+  const test::SquareLoop s = make_square_loop();
+  const SE3 T_run_map(so3::exp_quat(Vec3(0.01, -0.02, 2.0)), Vec3(3.0, -4.0, 0.5));
+  loop::GlobalPoseGraph graph(square_config());
+  graph.add_first_pose(s.drifted[0].t_ns, T_run_map * s.drifted[0].T_W_B);
+  for (const auto& c : s.odometry) graph.add_odometry(s.truth[c.to_index].t_ns, c.T_from_to);
+  graph.transform(T_run_map.inverse());
+  EXPECT_LT(max_diff(graph.trajectory(), s.drifted).max_m, 1e-9);
+  const Mat6 information = loop::information_from_sigmas(test::kLoopSigmaM, test::kLoopSigmaRad);
+  const std::vector<std::size_t> held = {13, 47, s.lap_poses + 7};
+  for (std::size_t k : held) {
+    // The map's key scan of the place, 0.3 m to the side and turned a little, and the loop it gives.
+    const SE3 T_map_Lu = s.truth[k].T_W_B * SE3(so3::exp_quat(Vec3(0, 0, 0.1)), Vec3(0, 0.3, 0));
+    graph.add_map_loop(T_map_Lu, k, T_map_Lu.inverse() * s.truth[k].T_W_B, information);
+  }
+  EXPECT_EQ(graph.map_loops(), held.size());
+  const loop::CorrectionSummary summary = graph.optimize();
+  EXPECT_TRUE(summary.converged);
+  EXPECT_EQ(summary.moved_poses, s.truth.size());  // the first pose too: the map loops hold the gauge
+  const double ate_before = test::position_rmse(s.drifted, s.truth);
+  const double ate_after = test::position_rmse(graph.trajectory(), s.truth);
+  std::printf("ATE %.4f m -> %.4f m with %zu map loops\n", ate_before, ate_after, held.size());
+  EXPECT_LT(ate_after, ate_before / 5.0);
+  for (std::size_t k : held) EXPECT_LT((graph.pose(k).translation() - s.truth[k].T_W_B.translation()).norm(), 0.02) << k;
+}
+
 TEST(OdometryChain, CovarianceMatchesNumericJacobians) {
   const test::BlockRoute r = test::make_block_route(40);
   const std::size_t a = 5;
