@@ -96,10 +96,10 @@ TEST(DenseMap, MemoryFollowsOccupiedVoxels) {
 }
 
 TEST(DenseMap, RejectsBadVoxelSize) {
-  EXPECT_THROW(DenseMap(0.0), std::invalid_argument);
-  EXPECT_THROW(DenseMap(-0.01), std::invalid_argument);
-  EXPECT_THROW(DenseMap(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
-  EXPECT_THROW(DenseMap(std::numeric_limits<double>::infinity()), std::invalid_argument);
+  EXPECT_THROW((void)DenseMap(0.0), std::invalid_argument);
+  EXPECT_THROW((void)DenseMap(-0.01), std::invalid_argument);
+  EXPECT_THROW((void)DenseMap(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+  EXPECT_THROW((void)DenseMap(std::numeric_limits<double>::infinity()), std::invalid_argument);
 }
 
 }  // namespace
