@@ -1,11 +1,13 @@
 // Loop closure speed: one BoW database query at 1,000 / 5,000 key frames, one loop constraint of a true
-// revisit (descriptor matching, EPnP RANSAC, ICP, checks) and its EPnP step alone.
+// revisit (descriptor matching, EPnP RANSAC, ICP, checks) and its EPnP step alone, and one key frame of a run
+// re-localizing in a saved map of 1,000 / 5,000 key frames (docs/loop.md, "Map reuse").
 // BoW entries: the left image rendered at 50 poses evenly spread in time along the simulated highbay route
 // (seed 1), described by the frontend's ORB and the shipped vocabulary; key frame i keeps a random 80 % of
 // image i mod 50's descriptors (std::mt19937_64, seed 1), so entries differ as a long run's key frames do.
 // The constraint: test_loop_closer.cpp's A -> B (the same place from 1.5 m further and 15 deg turned).
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -41,25 +43,38 @@ cv::Mat left_descriptors(double f, std::uint64_t noise_seed) {
   return describe_image(sim::render_image(s.world, s.calib.cam0, [&](TimeNs) { return T_W_C0; }, t_ns, render));
 }
 
+// The descriptors of key frame i of a long run: a random 80 % of rendered image i mod 50's (drawn in order of i).
+class KeyImageRows {
+ public:
+  KeyImageRows() : rng_(1), keep_(0.8) {
+    for (int i = 0; i < kRenderedImages; ++i) images_.push_back(left_descriptors(static_cast<double>(i) / kRenderedImages, i));
+  }
+  // Route time fraction of the image key frame i comes from.
+  static double fraction(std::size_t i) { return static_cast<double>(i % kRenderedImages) / kRenderedImages; }
+  cv::Mat next(std::size_t i) {
+    const cv::Mat& d = images_[i % images_.size()];
+    cv::Mat kept;
+    for (int r = 0; r < d.rows; ++r) {
+      if (keep_(rng_)) kept.push_back(d.row(r));
+    }
+    return kept;
+  }
+
+ private:
+  std::vector<cv::Mat> images_;
+  std::mt19937_64 rng_;
+  std::bernoulli_distribution keep_;
+};
+
 // N key frames one second apart, built once per N.
 const BowDatabase& database(std::size_t n) {
-  static std::vector<cv::Mat> images;
-  for (int i = static_cast<int>(images.size()); i < kRenderedImages; ++i) {
-    images.push_back(left_descriptors(static_cast<double>(i) / kRenderedImages, i));
-  }
   static std::map<std::size_t, BowDatabase> cache;
   auto it = cache.find(n);
   if (it != cache.end()) return it->second;
-  std::mt19937_64 rng(1);
-  std::bernoulli_distribution keep(0.8);
+  KeyImageRows rows;
   BowDatabase db;
   for (std::size_t i = 0; i < n; ++i) {
-    const cv::Mat& d = images[i % images.size()];
-    cv::Mat kept;
-    for (int r = 0; r < d.rows; ++r) {
-      if (keep(rng)) kept.push_back(d.row(r));
-    }
-    db.add(static_cast<std::int64_t>(i), s_to_ns(static_cast<double>(i)), scene().vocabulary->transform(kept));
+    db.add(static_cast<std::int64_t>(i), s_to_ns(static_cast<double>(i)), scene().vocabulary->transform(rows.next(i)));
   }
   return cache.emplace(n, std::move(db)).first->second;
 }
@@ -156,5 +171,63 @@ void BM_LoopEpnp(benchmark::State& state) {
   state.counters["pnp_inliers"] = estimate.inliers;
 }
 BENCHMARK(BM_LoopEpnp)->Unit(benchmark::kMillisecond);
+
+// One key frame of a run that re-localizes in a saved map of N key frames: B's query of the map's database and
+// the verification of its candidates, with A (the same place) in the map at key frame N / 2 among N - 1 others
+// from the long run above (their rows carry no 3D point, so a candidate among them stops at descriptor matching).
+// Images of the route within 5 % of A's place are left out of the others, so that A is the place's only key
+// frame. Re-localization takes relocalization_loops (2) such key frames.
+void BM_MapRelocalization(benchmark::State& state) {
+  const Revisit& r = revisit();
+  const std::size_t n = static_cast<std::size_t>(state.range(0));
+  const test::SimLoopScene& s = scene();
+  const double a_fraction = 20.0 / ns_to_s(s.motion.end_ns() - s.motion.start_ns());
+  KeyImageRows rows;
+  std::vector<loop::KeyFrame> map;
+  Trajectory poses;
+  for (std::size_t i = 0, source = 0; i < n; ++i) {
+    loop::KeyFrame k;
+    if (i == n / 2) {
+      k = r.A;
+    } else {
+      while (std::abs(KeyImageRows::fraction(source) - a_fraction) < 0.05) ++source;
+      k.image.descriptors = rows.next(source++);
+      k.image.left_norm.assign(static_cast<std::size_t>(k.image.descriptors.rows), Eigen::Vector2d::Zero());
+      k.image.points_C0.assign(static_cast<std::size_t>(k.image.descriptors.rows), Vec3::Constant(std::nan("")));
+      k.image.bow = s.vocabulary->transform(k.image.descriptors);
+      k.image.focal_px = r.A.image.focal_px;
+    }
+    k.pose_index = i;
+    k.scan_t_ns = k.image.t_ns = s_to_ns(static_cast<double>(i + 1));
+    map.push_back(std::move(k));
+    poses.push_back({map.back().scan_t_ns, i == n / 2 ? s.T_W_L(r.T_W_IA) : SE3()});
+  }
+  // Each iteration adds B again, a second later; the time gap keeps the run's own earlier copies of B from being
+  // candidates, so every iteration queries and verifies in the map.
+  loop::LoopClosureConfig config;
+  config.min_time_gap_s = 1e9;
+  loop::LoopCloser closer(config, lidar::LidarConfig{}, s.vocabulary);
+  closer.load_map(std::move(map), std::move(poses));
+  const std::function<SE3(std::size_t)> T_W_L = [&](std::size_t) { return s.T_W_L(r.T_W_IB); };
+  std::vector<loop::LoopCandidateRecord> records;
+  TimeNs t_ns = r.B.image.t_ns;
+  for (auto _ : state) {
+    state.PauseTiming();
+    loop::KeyFrame B = r.B;
+    B.pose_index = 0;
+    B.image.t_ns = B.scan_t_ns = (t_ns += s_to_ns(1.0));
+    state.ResumeTiming();
+    records = closer.add_and_detect(std::move(B), T_W_L);
+    benchmark::DoNotOptimize(records.data());
+  }
+  if (records.empty() || !records.back().accepted() || !records.back().map_candidate ||
+      records.back().candidate_key_frame != n / 2) {
+    state.SkipWithError("B did not find A in the map");
+    return;
+  }
+  state.counters["map_key_frames"] = static_cast<double>(n);
+  state.counters["candidates_verified"] = static_cast<double>(records.size());
+}
+BENCHMARK(BM_MapRelocalization)->Arg(1000)->Arg(5000)->Unit(benchmark::kMillisecond);
 
 }  // namespace
