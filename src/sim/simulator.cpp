@@ -58,7 +58,16 @@ FlownScene recorded_flight_scene(const SimConfig& config, const SimulateRequest&
   return scene;
 }
 
-constexpr double kMinRouteClearanceM = 0.3;  // a varied route's waypoints from any surface (the rig's size)
+constexpr double kMinRouteClearanceM = 0.3;  // a varied route's waypoints from any surface (the rig's size; in the message)
+
+// A varied route (route.h) must keep clear of the world it was not built for.
+void check_clearance(const World& world, const std::vector<Vec3>& route_W) {
+  for (const Vec3& p_W : route_W) {
+    if (world.distance_to_surface(p_W) < kMinRouteClearanceM) {
+      throw InputError("--route-offset", "the shifted route passes within 0.3 m of a surface; choose a smaller offset");
+    }
+  }
+}
 
 // The world and the motion through it: a recorded ground truth, or the world's closed route flown at
 // the configured speed (or at the speed that makes it last request.duration_s).
@@ -75,12 +84,7 @@ FlownScene make_scene(const SimConfig& config, const SimulateRequest& request) {
   FlownScene scene{World::generate(request.scenario, request.world_seed.value_or(request.seed), std::max(0.0, length_m)),
               nullptr};
   const std::vector<Vec3> route_W = varied_route(scene.world.route_W(), request.route_start, request.route_offset_m);
-  for (const Vec3& p_W : route_W) {
-    if (scene.world.distance_to_surface(p_W) < kMinRouteClearanceM) {
-      throw InputError("--route-offset", "the shifted route passes within " + std::to_string(kMinRouteClearanceM) +
-                                             " m of a surface; choose a smaller offset");
-    }
-  }
+  if (request.route_start != 0.0 || request.route_offset_m != 0.0) check_clearance(scene.world, route_W);
   if (request.duration_s > 0) {
     const RouteMotion probe(route_W, motion_config);
     motion_config.cruise_speed_m_s =
