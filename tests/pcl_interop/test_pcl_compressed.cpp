@@ -13,13 +13,13 @@
 
 // The scans' point type (x y z intensity float32, ring uint16, timestamp float64), registered with PCL so
 // its reader fills every field.
-struct PointXYZIRT {
+struct EIGEN_ALIGN16 PointXYZIRT {
   PCL_ADD_POINT4D;
   float intensity;
   std::uint16_t ring;
   double timestamp;
   PCL_MAKE_ALIGNED_OPERATOR_NEW
-} EIGEN_ALIGN16;
+};
 
 POINT_CLOUD_REGISTER_POINT_STRUCT(PointXYZIRT, (float, x, x)(float, y, y)(float, z, z)(float, intensity, intensity)(
                                                    std::uint16_t, ring, ring)(double, timestamp, timestamp))
