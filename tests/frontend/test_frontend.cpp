@@ -82,7 +82,9 @@ TEST(Frontend, TracksKeepTheirIdsAndFollowTheirPoint) {
       // The same id is the same physical point: its first position projects onto today's left pixel.
       Eigen::Vector2d px;
       ASSERT_TRUE(frontend.rig().cam0.project(seq.T_W_C0(k).inverse() * it->second.second, &px));
-      EXPECT_LT((px - m.left_px).norm(), 1.5) << "pair " << k << " id " << m.track_id;  // KLT drifts a little
+      // KLT drifts a little over 11 pairs (up to 1.58 px in clang's build, under 1.5 in gcc's); another corner
+      // is at least corner_min_distance_px (8) away.
+      EXPECT_LT((px - m.left_px).norm(), 2.0) << "pair " << k << " id " << m.track_id;
       if (k == n - 1 && it->second.first == 0) ++first_ids_alive;
     }
   }
