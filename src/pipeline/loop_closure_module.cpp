@@ -113,7 +113,6 @@ bool LoopClosureModule::add_map_loop(const loop::LoopCandidateRecord& r) {
   };
   if (relocalized()) {
     graph_.add_map_loop(T_map_Lu(r), r.query_pose_index, r.T_Lu_Lv, r.information);
-    ++out_.map_loops;
     return true;
   }
   // Where this run's frame lies in the map by this loop: T_map_run = T_map_Lu T_Lu_Lv (T_run_Lv)^-1.
@@ -131,7 +130,6 @@ bool LoopClosureModule::add_map_loop(const loop::LoopCandidateRecord& r) {
   for (const loop::LoopCandidateRecord& loop : relocalization_->loops) {
     graph_.add_map_loop(T_map_Lu(loop), loop.query_pose_index, loop.T_Lu_Lv, loop.information);
   }
-  out_.map_loops += relocalization_->loops.size();
   out_.relocalized_t_ns = r.query_t_ns;
   out_.T_map_run = T_map_run;
   relocalization_.reset();
@@ -186,6 +184,7 @@ std::optional<MapCorrection> LoopClosureModule::take_correction() {
 
 LoopClosureOutput LoopClosureModule::finish() {
   out_.key_frames = closer_ ? closer_->key_frames().size() : 0;
+  out_.map_loops = graph_.map_loops();
   if (closer_) out_.key_frame_data = closer_->release_key_frames();
   out_.lidar_final = graph_.size() > 0 ? graph_.trajectory() : Trajectory{};
   if (!corrected_) out_.lidar_final = out_.lidar_global;  // no loop: the odometry is final
