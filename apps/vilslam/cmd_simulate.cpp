@@ -16,6 +16,7 @@ struct Options {
   double route_offset_m = 0;
   double length_m = 0;
   double duration_s = 0;
+  int laps = 1;
   bool preview = false;
   std::string config;
   std::string trajectory;
@@ -43,10 +44,15 @@ vilslam::cli::Command reg("simulate", "Simulate a scenario as a stereo + IMU + L
                            ->check(CLI::Range(-2.0, 2.0));
   auto* length = app.add_option("--length", o->length_m, "Route length in metres (default: the paper's)")
                      ->check(CLI::PositiveNumber);
-  app.add_option("--duration", o->duration_s,
-                 "Size the route so the sequence lasts this many seconds (with --trajectory: fly its first seconds)")
-      ->check(CLI::PositiveNumber)
-      ->excludes(length);
+  auto* duration = app.add_option("--duration", o->duration_s,
+                                  "Size the route so the sequence lasts this many seconds (with --trajectory: fly its "
+                                  "first seconds)")
+                       ->check(CLI::PositiveNumber)
+                       ->excludes(length);
+  auto* laps = app.add_option("--laps", o->laps, "Fly the route this many times (same world, longer sequence)")
+                   ->check(CLI::Range(1, 100))
+                   ->excludes(duration)
+                   ->capture_default_str();
   app.add_flag("--preview", o->preview, "Only the first seconds (config preview_duration_s), coarse model");
   app.add_option("--config", o->config, "Simulator YAML (config/sim_default.yaml)")->check(CLI::ExistingFile);
   auto* trajectory = app.add_option("--trajectory", o->trajectory, "Fly this ground truth (TUM) in the room")
@@ -58,7 +64,7 @@ vilslam::cli::Command reg("simulate", "Simulate a scenario as a stereo + IMU + L
       ->check(CLI::IsMember({"vlp16", "hesai128", "mid360"}));
   app.add_flag("--report", o->report, "Print a table of the sequence and write DIR/report.json");
   app.add_flag("--overwrite", o->overwrite, "Replace an existing output folder");
-  return [o, world_seed, route_start, route_offset]() {
+  return [o, world_seed, route_start, route_offset, laps]() {
     using namespace vilslam::sim;
     SimConfig config = o->config.empty() ? SimConfig{} : load_sim_config(o->config);
     if (!o->lidar.empty()) config.lidar = lidar_sensor(o->lidar);
@@ -66,8 +72,9 @@ vilslam::cli::Command reg("simulate", "Simulate a scenario as a stereo + IMU + L
     request.scenario = parse_scenario(o->scenario);
     if (!o->trajectory.empty() && request.scenario != Scenario::kRoom)
       throw vilslam::InputError(o->trajectory, "--trajectory flies recorded motion in the 'room' scenario only");
-    if (!o->trajectory.empty() && (route_start->count() > 0 || route_offset->count() > 0))
-      throw vilslam::InputError(o->trajectory, "--route-start and --route-offset vary the world's route, not a --trajectory");
+    if (!o->trajectory.empty() && (route_start->count() > 0 || route_offset->count() > 0 || laps->count() > 0))
+      throw vilslam::InputError(o->trajectory,
+                                "--route-start, --route-offset and --laps vary the world's route, not a --trajectory");
     request.out_dir = o->out;
     request.seed = o->seed;
     if (world_seed->count() > 0) request.world_seed = o->world_seed;
@@ -75,6 +82,7 @@ vilslam::cli::Command reg("simulate", "Simulate a scenario as a stereo + IMU + L
     request.route_offset_m = o->route_offset_m;
     request.length_m = o->length_m;
     request.duration_s = o->duration_s;
+    request.laps = o->laps;
     request.preview = o->preview;
     request.trajectory_path = o->trajectory;
     request.imu_path = o->imu;

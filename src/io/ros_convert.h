@@ -18,6 +18,9 @@ cv::Mat grey_from_ros_compressed_image(const RosCompressedImage& image);
 // An 8-bit grey image as a mono8 sensor_msgs/Image.
 RosImage ros_image_from_grey(const cv::Mat& grey, TimeNs t_ns, const std::string& frame_id);
 
+// sensor_msgs/Imu as a sample (orientation and covariances unused); a non-finite rate or force is a WireError.
+ImuSample imu_sample_from_ros(const RosImu& imu);
+
 // The driver layout a PointCloud2 follows, named after its time field (docs/formats.md):
 // "velodyne" (time, s since the stamp), "ouster" (t, ns since the stamp), "hesai" (timestamp, absolute,
 // with ring), "livox" (timestamp without ring, or offset_time in ns since the stamp), "xyz" (no time).

@@ -136,14 +136,7 @@ std::vector<ImuSample> read_imu(const BagIn& bag, const std::string& topic) {
   require_md5(bag, topic, kRosImu);
   std::vector<ImuSample> imu;
   bag.for_each(topic, [&](std::size_t k, const std::vector<std::uint8_t>& bytes) {
-    const RosImu m = about_message(bag.path(), topic, k, [&] { return decode_ros_imu(bytes); });
-    ImuSample s;
-    s.t_ns = m.header.stamp_ns;
-    s.gyro_rad_s = Vec3(m.angular_velocity[0], m.angular_velocity[1], m.angular_velocity[2]);
-    s.accel_m_s2 = Vec3(m.linear_acceleration[0], m.linear_acceleration[1], m.linear_acceleration[2]);
-    if (!s.gyro_rad_s.allFinite() || !s.accel_m_s2.allFinite()) {
-      throw InputError(bag.path(), "topic " + topic + ", message " + std::to_string(k) + ": non-finite value");
-    }
+    const ImuSample s = about_message(bag.path(), topic, k, [&] { return imu_sample_from_ros(decode_ros_imu(bytes)); });
     require_increasing(bag.path(), topic, imu.empty() ? 0 : imu.back().t_ns, s.t_ns, k);
     imu.push_back(s);
   });

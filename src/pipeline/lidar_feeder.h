@@ -30,6 +30,8 @@ class LidarFeeder {
   std::size_t unmapped_scans() const { return unmapped_ + waiting_.size(); }
   // Sweeps still waiting for the VIO poses to reach their end.
   std::size_t waiting_scans() const { return waiting_.size(); }
+  // The newest mapped sweep's features as registered (lidar/lidar_mapper.h).
+  const lidar::FeatureScan& last_features() const { return mapper_.last_features(); }
 
  private:
   void map(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <deque>
 #include <filesystem>
 #include <limits>
@@ -33,6 +34,9 @@ void check_mode_fits(const DatasetReader& reader, RunMode mode) {
   }
 }
 
+// CPU time of the whole process, every thread, in seconds.
+double process_cpu_s() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
 }  // namespace
 
 std::string default_vocabulary_path() {
@@ -62,6 +66,7 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
                              const std::function<void(double)>& progress) {
   check_mode_fits(reader, config.mode);
   const auto run_start = std::chrono::steady_clock::now();
+  const double cpu_start_s = process_cpu_s();
   const DatasetSummary& summary = reader.summary();
   RigCalibration calib = reader.calibration();
   std::optional<TimeOffsetEstimate> time_offset;
@@ -157,6 +162,11 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
     stats->dropped_frames = system.dropped_frames();
     stats->dropped_sweeps = system.dropped_sweeps();
     stats->max_release_lag_ms = max_release_lag_ms;
+    const QueueDepths depths = system.max_queue_depths();
+    stats->max_queue_frontend = depths.frontend;
+    stats->max_queue_smoother = depths.smoother;
+    stats->max_queue_lidar = depths.lidar;
+    stats->cpu_s = process_cpu_s() - cpu_start_s;
     result.realtime = std::move(stats);
   }
   result.data_s = first_t_ns ? ns_to_s(last_t_ns - *first_t_ns) : 0.0;

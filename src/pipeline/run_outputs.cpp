@@ -85,6 +85,13 @@ std::string timings_json(RunMode mode, const OfflineRunResult& r, const std::vec
     json.key("dropped_stereo_pairs").value(static_cast<std::uint64_t>(r.realtime->dropped_frames));
     json.key("dropped_sweeps").value(static_cast<std::uint64_t>(r.realtime->dropped_sweeps));
     json.key("max_release_lag_ms").value(r.realtime->max_release_lag_ms);
+    json.key("max_queue_depth").begin_object();
+    json.key("frontend").value(static_cast<std::uint64_t>(r.realtime->max_queue_frontend));
+    json.key("smoother").value(static_cast<std::uint64_t>(r.realtime->max_queue_smoother));
+    json.key("lidar").value(static_cast<std::uint64_t>(r.realtime->max_queue_lidar));
+    json.end_object();
+    json.key("cpu_s").value(r.realtime->cpu_s);
+    json.key("cpu_cores_used").value(r.run_wall_s > 0 ? r.realtime->cpu_s / r.run_wall_s : 0.0);
     write_timings(json, series, "latency");
     json.end_object();
   }

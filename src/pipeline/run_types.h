@@ -55,6 +55,9 @@ struct RealtimeStats {
   std::size_t dropped_frames = 0;
   std::size_t dropped_sweeps = 0;
   double max_release_lag_ms = 0.0;  // how late the reader released an event (reading it took longer than its slot)
+  // The most messages that waited at once in the frontend's, the smoother's and the LiDAR side's queue.
+  std::size_t max_queue_frontend = 0, max_queue_smoother = 0, max_queue_lidar = 0;
+  double cpu_s = 0.0;  // CPU time of the whole process (every thread) over the run
 };
 
 struct OfflineRunResult {

@@ -3,6 +3,7 @@
 // order they were pushed, either on a thread of its own behind a bounded queue or inline in the caller.
 // Either way a module sees the same message sequence, so a deterministic module gives the same output;
 // threads only let the modules of the chain work at the same time.
+#include <algorithm>
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
@@ -40,12 +41,19 @@ class Stage {
     space_.wait(lock, [this] { return queue_.size() < capacity_ || error_ || closed_; });
     if (error_ || closed_) return;
     queue_.push_back(std::move(message));
+    max_depth_ = std::max(max_depth_, queue_.size());
     ready_.notify_one();
   }
 
   bool failed() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return error_ != nullptr;
+  }
+
+  // The most messages that waited at once (0 inline).
+  std::size_t max_depth() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return max_depth_;
   }
 
   // Waits until every pushed message is handled, then rethrows what handle() threw, if anything.
@@ -99,6 +107,7 @@ class Stage {
   std::condition_variable ready_;
   std::condition_variable space_;
   std::deque<Message> queue_;
+  std::size_t max_depth_ = 0;
   bool closed_ = false;
   std::exception_ptr error_;
   std::thread worker_;

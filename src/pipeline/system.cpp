@@ -92,6 +92,10 @@ class LidarSide {
   // What was mapped (or given up) since the last call: its outputs, and the load it leaves.
   void publish() {
     const SystemCallbacks& cb = shared_->callbacks;
+    if (cb.lidar_features && sweeps_published_ < result_->lidar.size()) {
+      const lidar::LidarMappingResult& newest = result_->lidar.back();
+      cb.lidar_features({newest.t_ns, newest.T_W_L}, lidar_->last_features());
+    }
     for (; sweeps_published_ < result_->lidar.size(); ++sweeps_published_) {
       if (cb.lidar_pose) cb.lidar_pose(result_->lidar[sweeps_published_]);
     }
@@ -298,6 +302,14 @@ bool System::failed() const {
 
 std::size_t System::dropped_frames() const { return impl_->shared.load ? impl_->shared.load->frames.dropped() : 0; }
 std::size_t System::dropped_sweeps() const { return impl_->shared.load ? impl_->shared.load->sweeps.dropped() : 0; }
+
+QueueDepths System::max_queue_depths() const {
+  QueueDepths d;
+  if (impl_->frontend) d.frontend = impl_->frontend->max_depth();
+  if (impl_->smoother) d.smoother = impl_->smoother->max_depth();
+  if (impl_->lidar) d.lidar = impl_->lidar->max_depth();
+  return d;
+}
 
 OfflineRunResult System::finish() {
   Impl& m = *impl_;

@@ -26,6 +26,16 @@ struct SystemCallbacks {
   std::function<void(const TimedPose&)> lidar_global_pose;
   // vil: every loop candidate examined, accepted or with the stage that rejected it (LiDAR thread).
   std::function<void(const loop::LoopCandidateRecord&)> loop_candidate;
+  // vil and lidar-only: the newest mapped sweep's edge and planar features as registered (dewarped to the
+  // sweep's end, in its L) with T_W_L; a sparse map to show (LiDAR thread).
+  std::function<void(const TimedPose& T_W_L, const lidar::FeatureScan& features_L)> lidar_features;
+};
+
+// The most messages that waited at once in each module's queue (0 for a module the mode does not run).
+struct QueueDepths {
+  std::size_t frontend = 0;
+  std::size_t smoother = 0;
+  std::size_t lidar = 0;
 };
 
 class System {
@@ -51,6 +61,7 @@ class System {
   bool failed() const;
   std::size_t dropped_frames() const;
   std::size_t dropped_sweeps() const;
+  QueueDepths max_queue_depths() const;
 
   // Waits until every module has handled what was pushed, then returns everything collected (trajectories,
   // per-module timings, loop closure output); rethrows the first module error. Call once.

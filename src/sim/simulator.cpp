@@ -74,6 +74,7 @@ void check_clearance(const World& world, const std::vector<Vec3>& route_W) {
 FlownScene make_scene(const SimConfig& config, const SimulateRequest& request) {
   if (!request.trajectory_path.empty()) return recorded_flight_scene(config, request);
   RouteMotionConfig motion_config = route_motion_config(config, request.scenario);
+  motion_config.laps = request.laps;
   const double min_duration_s = motion_config.rest_start_s + motion_config.rest_end_s + motion_config.ramp_s;
   if (request.duration_s > 0 && request.duration_s <= min_duration_s)
     throw InputError("--duration", "must exceed the rests and speed ramps (" + std::to_string(min_duration_s) + " s)");

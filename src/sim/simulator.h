@@ -21,6 +21,7 @@ struct SimulateRequest {
   double route_offset_m = 0;    // fly the route shifted sideways by this much (left of travel when positive)
   double length_m = 0;          // route length; 0: the scenario's preset (or what duration_s implies)
   double duration_s = 0;        // > 0: size the route so the closed trajectory lasts this long
+  int laps = 1;                 // times round the world's route (the same world: only the time grows)
   bool preview = false;         // only the first config.preview_duration_s seconds, coarse model
   std::string trajectory_path;  // fly this ground truth (TUM) instead of the world's route
   std::string imu_path;         // use this real IMU stream (EuRoC imu0/data.csv) and its timestamps

@@ -66,24 +66,26 @@ Mat3 zyx_rotation(double yaw, double pitch, double roll) {
 
 RouteMotion::RouteMotion(const std::vector<Vec3>& route_W, const RouteMotionConfig& config)
     : config_(config), curve_(UniformBSpline::periodic(route_controls(route_W, config.control_spacing_m))) {
-  if (!(config.cruise_speed_m_s > 0) || !(config.ramp_s > 0) || config.rest_start_s < 0 || config.rest_end_s < 0)
-    throw std::invalid_argument("route motion: speed and ramp must be positive, rests non-negative");
+  if (!(config.cruise_speed_m_s > 0) || !(config.ramp_s > 0) || config.rest_start_s < 0 || config.rest_end_s < 0 ||
+      config.laps < 1)
+    throw std::invalid_argument("route motion: speed, ramp and laps must be positive, rests non-negative");
   const int segments = static_cast<int>(curve_.max_u());
   segment_start_length_m_.assign(segments + 1, 0.0);
   for (int i = 0; i < segments; ++i)
     segment_start_length_m_[i + 1] = segment_start_length_m_[i] + arc_length(curve_, i, i + 1);
   total_length_m_ = segment_start_length_m_.back();
+  travel_m_ = config.laps * total_length_m_;
   // A route too short to reach cruise speed is flown slower: the two ramps cover v * ramp metres.
-  cruise_speed_m_s_ = std::min(config.cruise_speed_m_s, total_length_m_ / config.ramp_s);
+  cruise_speed_m_s_ = std::min(config.cruise_speed_m_s, travel_m_ / config.ramp_s);
   ramp_s_ = config.ramp_s;
-  cruise_s_ = std::max(0.0, total_length_m_ / cruise_speed_m_s_ - ramp_s_);
+  cruise_s_ = std::max(0.0, travel_m_ / cruise_speed_m_s_ - ramp_s_);
 }
 
 double RouteMotion::cruise_speed_for_duration(double length_m, double duration_s, const RouteMotionConfig& config) {
   // duration = rests + 2 ramps + cruise, cruise = length / v - ramp.
   const double moving_s = duration_s - config.rest_start_s - config.rest_end_s - config.ramp_s;
   if (!(moving_s > 0)) throw std::invalid_argument("duration too short for the rests and speed ramps");
-  return length_m / moving_s;
+  return config.laps * length_m / moving_s;
 }
 
 TimeNs RouteMotion::end_ns() const {
@@ -106,7 +108,7 @@ Eigen::Vector3d RouteMotion::distance_profile(double tau_s) const {
     return Eigen::Vector3d(0.5 * v * ramp_s_ + v * cruise_s_ + v * ramp_s_ * (y - smootherstep_integral(y)),
                            v * (1 - smootherstep(y)), -v / ramp_s_ * smootherstep_d1(y));
   }
-  return Eigen::Vector3d(total_length_m_, 0, 0);
+  return Eigen::Vector3d(travel_m_, 0, 0);
 }
 
 double RouteMotion::length_at_parameter(double u) const {
@@ -136,7 +138,10 @@ double RouteMotion::parameter_at_length(double s_m) const {
 MotionState RouteMotion::state(TimeNs t_ns) const {
   t_ns = std::clamp(t_ns, start_ns(), end_ns());
   const Eigen::Vector3d s = distance_profile(ns_to_s(t_ns - config_.start_ns));
-  const double u = parameter_at_length(s[0]);
+  // Past the first lap, the distance into the current one: the spline is periodic, so each lap starts where
+  // the last ended.
+  const double lap_s = s[0] <= total_length_m_ ? s[0] : s[0] - total_length_m_ * std::floor(s[0] / total_length_m_);
+  const double u = parameter_at_length(lap_s);
   const SplinePoint c = curve_.eval(u);
   const Vec3 d1 = c.d1, d2 = c.d2;
   const double speed_u = d1.norm();

@@ -39,11 +39,13 @@ struct RouteMotionConfig {
   double roll_amplitude_deg = 1.5; // sway, a periodic function of the distance travelled
   double pitch_amplitude_deg = 1.0;
   double sway_wavelength_m = 1.4;
+  int laps = 1;                    // times round the closed route before stopping where it started
   TimeNs start_ns = 0;
 };
 
 // A closed route (first waypoint == last) as a periodic cubic B-spline, arc-length parametrized,
-// flown with a speed profile that is at rest at both ends (so the end pose equals the start pose).
+// flown config.laps times with a speed profile that is at rest at both ends (so the end pose equals the
+// start pose).
 // Yaw follows the horizontal direction of travel, pitch the slope; roll and pitch sway smoothly with
 // the distance.
 class RouteMotion : public BodyMotion {
@@ -52,9 +54,10 @@ class RouteMotion : public BodyMotion {
   TimeNs start_ns() const override { return config_.start_ns; }
   TimeNs end_ns() const override;
   MotionState state(TimeNs t_ns) const override;
-  double length_m() const { return total_length_m_; }
+  double length_m() const { return total_length_m_; }  // of one lap
   double cruise_speed_m_s() const { return cruise_speed_m_s_; }
-  // Cruise speed that makes the whole motion last duration_s (rests and ramps included).
+  // Cruise speed that makes the whole motion (config.laps laps of length_m) last duration_s (rests and ramps
+  // included).
   static double cruise_speed_for_duration(double length_m, double duration_s, const RouteMotionConfig& config);
 
  private:
@@ -66,7 +69,8 @@ class RouteMotion : public BodyMotion {
   RouteMotionConfig config_;
   UniformBSpline curve_;
   std::vector<double> segment_start_length_m_;  // arc length at u = i
-  double total_length_m_ = 0;
+  double total_length_m_ = 0;   // one lap
+  double travel_m_ = 0;         // all laps
   double cruise_speed_m_s_ = 0;
   double ramp_s_ = 0;
   double cruise_s_ = 0;

@@ -17,7 +17,8 @@ TEST(SimulateCli, UnusableLengthExitsWithTwoAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
-// A route shifted into a wall (hallways are 2.0-2.4 m wide) or varied with a recorded trajectory is refused.
+// A route shifted into a wall (hallways are 2.0-2.4 m wide), or varied or repeated with a recorded trajectory,
+// is refused.
 TEST(SimulateCli, RouteVariedIntoAWallOrOfATrajectoryExitsWithTwo) {
   const std::filesystem::path out = test::temp_dir() / "shifted";
   test::CliResult r = test::run_cli("simulate hallway --preview --route-offset 1.5 --out " + out.string());
@@ -28,7 +29,14 @@ TEST(SimulateCli, RouteVariedIntoAWallOrOfATrajectoryExitsWithTwo) {
   std::ofstream(tum) << "1 0 0 1 0 0 0 1\n2 0.1 0 1 0 0 0 1\n";
   r = test::run_cli("simulate room --trajectory " + tum.string() + " --route-start 0.5 --out " + out.string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("--route-start and --route-offset vary the world's route"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--route-start, --route-offset and --laps vary the world's route"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  r = test::run_cli("simulate room --trajectory " + tum.string() + " --laps 2 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  r = test::run_cli("simulate room --duration 20 --laps 2 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;  // the laps would not fit the duration's route
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 

@@ -117,6 +117,29 @@ TEST(RouteMotion, DurationSetsCruiseSpeed) {
   EXPECT_THROW(RouteMotion::cruise_speed_for_duration(probe.length_m(), 2.0, config), std::invalid_argument);
 }
 
+TEST(RouteMotion, LapsFlyTheSameRouteAgainSmoothly) {
+  RouteMotionConfig config;
+  const RouteMotion one(rectangle_route(), config);
+  config.laps = 2;
+  const RouteMotion two(rectangle_route(), config);
+  EXPECT_DOUBLE_EQ(two.length_m(), one.length_m());
+  // The second lap adds one lap's length at cruise speed.
+  EXPECT_NEAR(ns_to_s(two.end_ns() - one.end_ns()), one.length_m() / config.cruise_speed_m_s, 1e-6);
+  // Mid-way through the second lap the rig is where it was mid-way through the first, a lap's time earlier.
+  const TimeNs lap_ns = two.end_ns() - one.end_ns();
+  for (double f : {0.3, 0.55, 0.8}) {
+    const TimeNs t = one.start_ns() + static_cast<TimeNs>(f * double(one.end_ns() - one.start_ns()));
+    const SE3 first = two.pose(t), second = two.pose(t + lap_ns);
+    EXPECT_LT((first.translation() - second.translation()).norm(), 1e-6) << f;
+    EXPECT_LT(rotation_angle(first, second), 1e-6) << f;
+  }
+  // Across the lap boundary the motion stays smooth, and it ends at rest where it started.
+  expect_consistent_derivatives(two, 37 * kMs, 1e-4, 1e-3, 1e-4);
+  EXPECT_LT((two.pose(two.end_ns()).translation() - two.pose(two.start_ns()).translation()).norm(), 1e-6);
+  config.laps = 0;
+  EXPECT_THROW(RouteMotion(rectangle_route(), config), std::invalid_argument);
+}
+
 TEST(RouteMotion, RejectsOpenRoutes) {
   std::vector<Vec3> open = rectangle_route();
   open.back() = Vec3(1, 1, 1.5);

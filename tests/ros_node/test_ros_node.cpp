@@ -1,0 +1,141 @@
+// The live ROS1 node (apps/ros_node): a ROS master is started, vilslam_ros_node subscribes to the streams of
+// a simulated room lap, play_and_record.py publishes the lap's bag (`vilslam export-bag`) at half speed as
+// drivers would and records what the node publishes. The node's trajectories must be the offline run's.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <thread>
+
+#include "io/trajectory_io.h"
+#include "test_util.h"
+
+namespace vilslam {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A background process started by the shell; its pid from the pid file.
+pid_t start_background(const std::string& command, const fs::path& log, const fs::path& pid_file) {
+  const auto r = test::run_command("(" + command + " > " + log.string() + " 2>&1 & echo $! > " + pid_file.string() + ")");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(pid_file);
+  pid_t pid = 0;
+  in >> pid;
+  return pid;
+}
+
+// Waits up to timeout_s for the process to end; true when it did.
+bool wait_for_exit(pid_t pid, double timeout_s) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (::kill(pid, 0) != 0) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return false;
+}
+
+std::map<std::string, long> read_counts(const fs::path& path) {
+  std::map<std::string, long> counts;
+  std::ifstream in(path);
+  std::string name;
+  long n = 0;
+  while (in >> name >> n) counts[name] = n;
+  return counts;
+}
+
+// The poses of `live` at stamps `reference` also has: how many, and the largest position difference.
+std::pair<std::size_t, double> compare(const Trajectory& live, const Trajectory& reference) {
+  std::map<TimeNs, Vec3> by_stamp;
+  for (const TimedPose& p : reference) by_stamp[p.t_ns] = p.T_W_B.translation();
+  std::size_t matched = 0;
+  double max_diff_m = 0;
+  for (const TimedPose& p : live) {
+    const auto it = by_stamp.find(p.t_ns);
+    if (it == by_stamp.end()) continue;
+    ++matched;
+    max_diff_m = std::max(max_diff_m, (p.T_W_B.translation() - it->second).norm());
+  }
+  return {matched, max_diff_m};
+}
+
+TEST(RosNode, LiveNodePublishesTheOfflineTrajectory) {
+  const fs::path dir = test::process_temp_root() / "RosNode";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path data = dir / "room", bag = dir / "room.bag";
+  ASSERT_EQ(test::run_cli("simulate room --length 8 --seed 2 --out " + data.string()).exit_code, 0);
+  const auto exported = test::run_cli("export-bag " + data.string() + " --out " + bag.string());
+  ASSERT_EQ(exported.exit_code, 0) << exported.output;
+  const auto offline = test::run_cli("run --mode vil " + data.string() + " --out " + (dir / "offline").string());
+  ASSERT_EQ(offline.exit_code, 0) << offline.output;
+
+  // A master of this test's own, its logs in the test's folder.
+  const int port = 20000 + static_cast<int>(::getpid() % 20000);
+  ::setenv("ROS_MASTER_URI", ("http://127.0.0.1:" + std::to_string(port)).c_str(), 1);
+  ::setenv("ROS_HOSTNAME", "127.0.0.1", 1);
+  ::setenv("ROS_HOME", (dir / "ros_home").c_str(), 1);
+  const pid_t master = start_background("rosmaster --core -p " + std::to_string(port), dir / "master.log", dir / "master.pid");
+  ASSERT_GT(master, 0);
+  const pid_t node = start_background(std::string(VILSLAM_ROS_NODE) + " --rig " + (dir / "room.rig.yaml").string() +
+                                          " --out " + (dir / "live_out").string() +
+                                          " imu0:=/imu0 cam0:=/cam0/image_raw cam1:=/cam1/image_raw lidar0:=/lidar0/points",
+                                      dir / "node.log", dir / "node.pid");
+  ASSERT_GT(node, 0);
+  // Debian's interpreter: rospy and the message packages live in its dist-packages only.
+  const auto played = test::run_command("/usr/bin/python3 " + std::string(VILSLAM_SOURCE_DIR) +
+                                        "/tests/ros_node/play_and_record.py " + bag.string() + " " +
+                                        (dir / "recorded").string() +
+                                        " --speed 0.5 --topics /imu0 /cam0/image_raw /cam1/image_raw /lidar0/points");
+  ::kill(node, SIGINT);  // the node finishes the run and writes --out
+  const bool node_ended = wait_for_exit(node, 120);
+  ::kill(master, SIGINT);
+  wait_for_exit(master, 30);
+  if (!node_ended) ::kill(node, SIGKILL);
+  const std::string node_log = test::read_file_bytes(dir / "node.log");
+  ASSERT_EQ(played.exit_code, 0) << played.output << "\nnode:\n" << node_log;
+  ASSERT_TRUE(node_ended) << node_log;
+  EXPECT_NE(node_log.find("wrote " + (dir / "live_out").string()), std::string::npos) << node_log;
+
+  const auto read = [](const fs::path& p) { return read_trajectory(p.string(), TrajectoryFormat::kTum); };
+  const Trajectory offline_camera = read(dir / "offline/vio_camera.tum");
+  const Trajectory offline_lidar = read(dir / "offline/lidar.tum");
+  const Trajectory offline_global = read(dir / "offline/lidar_global.tum");
+  ASSERT_GT(offline_camera.size(), 100u);
+  ASSERT_GT(offline_lidar.size(), 50u);
+  // Every optimized stereo-frame state was published, where the offline run put it. With no pair dropped the
+  // smoother sees the offline input: the same frames with the same IMU samples between them.
+  const auto [camera_matched, camera_diff_m] = compare(read(dir / "recorded/camera_state.tum"), offline_camera);
+  EXPECT_GE(camera_matched, offline_camera.size() * 95 / 100) << node_log;
+  EXPECT_LT(camera_diff_m, 1e-6) << node_log;  // TUM's last digit
+  // Every sweep's LiDAR pose; a loop correction may reach the mapper a sweep earlier or later than offline.
+  const auto [lidar_matched, lidar_diff_m] = compare(read(dir / "recorded/lidar_pose.tum"), offline_lidar);
+  EXPECT_GE(lidar_matched, offline_lidar.size() * 95 / 100) << node_log;
+  EXPECT_LT(lidar_diff_m, 0.05) << node_log;
+  // The corrected path's last version holds the sweeps' loop-corrected poses.
+  const auto [path_matched, path_diff_m] = compare(read(dir / "recorded/path.tum"), offline_global);
+  EXPECT_GE(path_matched, offline_global.size() * 95 / 100) << node_log;
+  EXPECT_LT(path_diff_m, 0.05) << node_log;
+  const auto counts = read_counts(dir / "recorded/counts.txt");
+  std::printf("[ros node] camera states %zu of %zu within %.2e m, LiDAR poses %zu of %zu within %.2e m, path %zu of %zu "
+              "within %.2e m, odometry %ld\n%s",
+              camera_matched, offline_camera.size(), camera_diff_m, lidar_matched, offline_lidar.size(), lidar_diff_m,
+              path_matched, offline_global.size(), path_diff_m, counts.at("odometry"), node_log.c_str());
+  // IMU-rate odometry with its TF, and each mapped sweep's features.
+  EXPECT_GE(counts.at("odometry"), static_cast<long>(read(dir / "offline/vio_imu.tum").size() * 9 / 10));
+  EXPECT_EQ(counts.at("tf"), counts.at("odometry"));
+  EXPECT_GE(counts.at("sparse_map"), static_cast<long>(offline_lidar.size() / 2));
+  EXPECT_GT(counts.at("sparse_map_points"), 100 * counts.at("sparse_map"));
+  // The node's own outputs on shutdown, as `vilslam run` writes them.
+  EXPECT_GE(read(dir / "live_out/vio_camera.tum").size(), offline_camera.size() * 95 / 100);
+}
+
+}  // namespace
+}  // namespace vilslam
