@@ -111,17 +111,20 @@ TEST(RosNode, LiveNodePublishesTheOfflineTrajectory) {
   ASSERT_GT(offline_camera.size(), 100u);
   ASSERT_GT(offline_lidar.size(), 50u);
   // Every optimized stereo-frame state was published, where the offline run put it. With no pair dropped the
-  // smoother sees the offline input: the same frames with the same IMU samples between them.
+  // smoother sees the offline input: the same frames with the same IMU samples between them. (A machine too
+  // slow for half speed, e.g. under a sanitizer, drops pairs by the overload policy: then only close.)
   const auto [camera_matched, camera_diff_m] = compare(read(dir / "recorded/camera_state.tum"), offline_camera);
-  EXPECT_GE(camera_matched, offline_camera.size() * 95 / 100) << node_log;
-  EXPECT_LT(camera_diff_m, 1e-6) << node_log;  // TUM's last digit
+  const bool pairs_dropped = node_log.find("overload policy 0 frames") == std::string::npos;
+  EXPECT_GE(camera_matched, offline_camera.size() * (pairs_dropped ? 80 : 100) / 100) << node_log;
+  EXPECT_LT(camera_diff_m, pairs_dropped ? 0.05 : 1e-6) << node_log;  // 1e-6: TUM's last digit
   // Every sweep's LiDAR pose; a loop correction may reach the mapper a sweep earlier or later than offline.
   const auto [lidar_matched, lidar_diff_m] = compare(read(dir / "recorded/lidar_pose.tum"), offline_lidar);
-  EXPECT_GE(lidar_matched, offline_lidar.size() * 95 / 100) << node_log;
+  const bool sweeps_dropped = node_log.find("frames, 0 sweeps;") == std::string::npos;
+  EXPECT_GE(lidar_matched, offline_lidar.size() * (sweeps_dropped ? 80 : 100) / 100) << node_log;
   EXPECT_LT(lidar_diff_m, 0.05) << node_log;
   // The corrected path's last version holds the sweeps' loop-corrected poses.
   const auto [path_matched, path_diff_m] = compare(read(dir / "recorded/path.tum"), offline_global);
-  EXPECT_GE(path_matched, offline_global.size() * 95 / 100) << node_log;
+  EXPECT_GE(path_matched, offline_global.size() * (sweeps_dropped ? 80 : 100) / 100) << node_log;
   EXPECT_LT(path_diff_m, 0.05) << node_log;
   const auto counts = read_counts(dir / "recorded/counts.txt");
   std::printf("[ros node] camera states %zu of %zu within %.2e m, LiDAR poses %zu of %zu within %.2e m, path %zu of %zu "
