@@ -56,6 +56,10 @@ struct KeyFramePolicy {
   double stop_min_translation_m = 0.1;
   double stop_max_speed_mps = 0.05;
   double max_image_scan_gap_s = 0.03;  // a key image lies at most this far in time from its key scan's end
+  // false: a key frame whose accepted loop (to a key frame of this run) lies within min_translation_m and
+  // min_rotation_rad of the candidate is merged into it, not kept: the place is stored already, so the key
+  // frames grow with the mapped area, not with the time spent in it. true keeps every key frame.
+  bool keep_revisits = false;
 };
 
 // Whether the sweep at T_W_L is a new key scan, after the last key scan at T_W_L_last_key; the previous

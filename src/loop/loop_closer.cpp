@@ -97,6 +97,14 @@ std::vector<LoopCandidateRecord> LoopCloser::add_and_detect(KeyFrame key_frame,
   const std::vector<LoopCandidate> candidates =
       database_.query(v.image.bow, v.image.t_ns, max_candidates, s_to_ns(config_.min_time_gap_s));
   const bool accepted = verify_candidates(candidates, v, {key_frames_, T_W_L_of_pose, false}, T_W_L_of_pose, records);
+  if (accepted && !config_.key_frames.keep_revisits) {
+    const LoopCandidateRecord& loop = records.back();
+    const PoseDifference d = pose_difference(loop.T_Lu_Lv, SE3());
+    if (d.translation_m < config_.key_frames.min_translation_m && d.rotation_rad < config_.key_frames.min_rotation_rad) {
+      for (LoopCandidateRecord& r : records) r.query_key_frame = loop.candidate_key_frame;
+      return records;
+    }
+  }
   if (!accepted && !map_key_frames_.empty()) {
     // A loaded map's key images: all of them, whatever their time (another run's clock).
     const std::vector<LoopCandidate> in_map =

@@ -126,7 +126,8 @@ class LoopCloser {
              std::shared_ptr<const Vocabulary> vocabulary);
 
   // Verifies the BoW candidates of key_frame (its id is set here to the next position), then stores it in
-  // the database and the key frame list. T_W_L(pose_index) is the current best estimate of any earlier
+  // the database and the key frame list, unless it revisits a stored key frame (KeyFramePolicy::keep_revisits):
+  // then it is merged into that one, and its records name that one as the query key frame. T_W_L(pose_index) is the current best estimate of any earlier
   // graph pose (for the submap and the odometry check). Returns every examined candidate, in BoW order;
   // examination stops at the first accepted one (at most one loop per query). Throws InputError when the
   // key frame's image rows are inconsistent or it is not after the previous key frame.

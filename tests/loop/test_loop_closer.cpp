@@ -104,6 +104,30 @@ TEST(LoopCloser, SamePlaceEpnpWithinCentimetresIcpBetter) {
   EXPECT_DOUBLE_EQ(only[0].information(0, 1), 0.0);
 }
 
+// A key frame 0.3 m and 5 deg from a stored one that loops to it revisits a place already stored: it is merged
+// into that one, so the key frames grow with the area, not the time. keep_revisits keeps it; B, 1.5 m away
+// (beyond the key frame spacing), is always kept.
+TEST(LoopCloser, RevisitIsMergedIntoTheKeyFrameItLoopsTo) {
+  const SE3 pose_A2 = pose_A() * SE3(so3::exp(Vec3(0, 0, 5 * kDeg)), Vec3(0.3, 0.1, 0.0));
+  const KeyFrame revisit = scene().key_frame(pose_A2, s_to_ns(200.0), 1, 61);
+  for (const bool keep : {false, true}) {
+    LoopClosureConfig config;
+    config.key_frames.keep_revisits = keep;
+    LoopCloser closer(config, lidar::LidarConfig{}, scene().vocabulary);
+    const auto poses = graph_poses({pose_A(), pose_A2, pose_B()});
+    closer.add_and_detect(key_frame_A(), poses);
+    const std::vector<LoopCandidateRecord> records = closer.add_and_detect(revisit, poses);
+    ASSERT_FALSE(records.empty());
+    ASSERT_TRUE(records.back().accepted()) << "rejected by " << records.back().rejected_by;
+    EXPECT_EQ(records.back().query_key_frame, keep ? 1u : 0u) << keep;
+    EXPECT_EQ(closer.key_frames().size(), keep ? 2u : 1u) << keep;
+    const std::vector<LoopCandidateRecord> b = closer.add_and_detect(at_time(key_frame_B(), 300.0, 2), poses);
+    ASSERT_FALSE(b.empty());
+    EXPECT_TRUE(b.back().accepted()) << "rejected by " << b.back().rejected_by;
+    EXPECT_EQ(closer.key_frames().size(), keep ? 3u : 2u) << keep;
+  }
+}
+
 TEST(LoopCloser, SubmapOfNeighbouringKeyScans) {
   // Key frames 1.2 m before and after A; with submap_half_width 1 the candidate's map holds all three scans,
   // placed by the graph poses.
