@@ -18,6 +18,7 @@
 #include "pipeline/offline_runner.h"
 #include "pipeline/system.h"
 #include "test_util.h"
+#include "thread_sanitized.h"
 
 namespace vilslam {
 namespace {
@@ -149,7 +150,9 @@ TEST_F(SystemApi, InstalledPackageBuildsAndRunsAnOutsideProject) {
   EXPECT_TRUE(fs::exists(prefix / "include/vilslam/pipeline/system.h"));
   EXPECT_TRUE(fs::exists(prefix / "share/vilslam/orb_k10_l4.voc"));
   // A sanitized build's archives need the sanitizer runtime in the consumer too.
-  const std::string flags = VILSLAM_SANITIZED ? " -DCMAKE_CXX_FLAGS=-fsanitize=address,undefined" : "";
+  const std::string flags = VILSLAM_SANITIZED ? " -DCMAKE_CXX_FLAGS=-fsanitize=address,undefined"
+                            : test::kThreadSanitized ? " -DCMAKE_CXX_FLAGS=-fsanitize=thread"
+                                                     : "";
   r = test::run_command("cmake -S " + std::string(VILSLAM_SOURCE_DIR) + "/examples/consumer -B " + build.string() +
                         " -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=" + prefix.string() + flags);
   ASSERT_EQ(r.exit_code, 0) << r.output;

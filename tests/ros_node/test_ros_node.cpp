@@ -16,6 +16,7 @@
 
 #include "io/trajectory_io.h"
 #include "test_util.h"
+#include "thread_sanitized.h"
 
 namespace vilslam {
 namespace {
@@ -93,7 +94,8 @@ TEST(RosNode, LiveNodePublishesTheOfflineTrajectory) {
   const auto played = test::run_command("/usr/bin/python3 " + std::string(VILSLAM_SOURCE_DIR) +
                                         "/tests/ros_node/play_and_record.py " + bag.string() + " " +
                                         (dir / "recorded").string() +
-                                        " --speed 0.5 --topics /imu0 /cam0/image_raw /cam1/image_raw /lidar0/points");
+                                        " --speed " + (test::kThreadSanitized ? "0.05" : "0.5") +
+                                        " --topics /imu0 /cam0/image_raw /cam1/image_raw /lidar0/points");
   ::kill(node, SIGINT);  // the node finishes the run and writes --out
   const bool node_ended = wait_for_exit(node, 120);
   ::kill(master, SIGINT);
@@ -103,6 +105,7 @@ TEST(RosNode, LiveNodePublishesTheOfflineTrajectory) {
   ASSERT_EQ(played.exit_code, 0) << played.output << "\nnode:\n" << node_log;
   ASSERT_TRUE(node_ended) << node_log;
   EXPECT_NE(node_log.find("wrote " + (dir / "live_out").string()), std::string::npos) << node_log;
+  EXPECT_EQ(node_log.find("Sanitizer"), std::string::npos) << node_log;  // a sanitized node's reports
 
   const auto read = [](const fs::path& p) { return read_trajectory(p.string(), TrajectoryFormat::kTum); };
   const Trajectory offline_camera = read(dir / "offline/vio_camera.tum");
