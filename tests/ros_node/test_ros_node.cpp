@@ -107,6 +107,12 @@ TEST(RosNode, LiveNodePublishesTheOfflineTrajectory) {
   ASSERT_TRUE(node_ended) << node_log;
   EXPECT_NE(node_log.find("wrote " + (dir / "live_out").string()), std::string::npos) << node_log;
   EXPECT_EQ(node_log.find("Sanitizer"), std::string::npos) << node_log;  // a sanitized node's reports
+  if (test::kThreadSanitized) {
+    // Under ThreadSanitizer the node is about 20 times too slow to follow the bag even at 0.05x (most pairs
+    // and sweeps dropped): what this build checks is the node's threads, above, not its trajectory.
+    std::printf("[ros node] ThreadSanitizer build: trajectory not compared\n%s", node_log.c_str());
+    return;
+  }
 
   const auto read = [](const fs::path& p) { return read_trajectory(p.string(), TrajectoryFormat::kTum); };
   const Trajectory offline_camera = read(dir / "offline/vio_camera.tum");
