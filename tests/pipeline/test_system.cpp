@@ -158,7 +158,10 @@ TEST_F(SystemApi, InstalledPackageBuildsAndRunsAnOutsideProject) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   r = test::run_command("cmake --build " + build.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  r = test::run_command((build / "vilslam_consumer").string() + " " + *data_);
+  // Under TSan the outside project's TBB loops are not made serial as vilslam's own binaries' are
+  // (apps/tsan_serial_threads.cpp), so its reports would be TBB's: here only installing and linking is tested.
+  r = test::run_command(std::string(test::kThreadSanitized ? "TSAN_OPTIONS=report_bugs=0 " : "") +
+                        (build / "vilslam_consumer").string() + " " + *data_);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::smatch m;
   ASSERT_TRUE(std::regex_search(r.output, m, std::regex("camera states (\\d+), lidar poses (\\d+), loops (\\d+)")))
