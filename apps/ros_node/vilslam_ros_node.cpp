@@ -67,6 +67,21 @@ nav_msgs::Odometry odometry_msg(const TimedPose& pose) {
   return m;
 }
 
+// The odometry's pose as the TF of its child frame.
+tf2_msgs::TFMessage tf_msg(const nav_msgs::Odometry& odometry) {
+  geometry_msgs::TransformStamped t;
+  t.header = odometry.header;
+  t.child_frame_id = odometry.child_frame_id;
+  const geometry_msgs::Point& position = odometry.pose.pose.position;
+  t.transform.translation.x = position.x;
+  t.transform.translation.y = position.y;
+  t.transform.translation.z = position.z;
+  t.transform.rotation = odometry.pose.pose.orientation;
+  tf2_msgs::TFMessage tf;
+  tf.transforms.push_back(t);
+  return tf;
+}
+
 geometry_msgs::PoseStamped pose_stamped_msg(TimeNs t_ns, const SE3& T) {
   geometry_msgs::PoseStamped m;
   m.header.stamp = stamp(t_ns);
@@ -130,19 +145,9 @@ class Node {
     SystemCallbacks cb;
     cb.imu_pose = [this](const TimedPose& p) {
       if (!publishing_) return;
-      odometry_.publish(odometry_msg(p));
-      geometry_msgs::TransformStamped t;
-      t.header.stamp = stamp(p.t_ns);
-      t.header.frame_id = kWorldFrame;
-      t.child_frame_id = kImuFrame;
-      const geometry_msgs::Pose pose = pose_msg(p.T_W_B);
-      t.transform.translation.x = pose.position.x;
-      t.transform.translation.y = pose.position.y;
-      t.transform.translation.z = pose.position.z;
-      t.transform.rotation = pose.orientation;
-      tf2_msgs::TFMessage tf;
-      tf.transforms.push_back(t);
-      tf_.publish(tf);
+      const nav_msgs::Odometry m = odometry_msg(p);
+      odometry_.publish(m);
+      tf_.publish(tf_msg(m));
     };
     cb.camera_state = [this](const TimedPose& p) {
       if (publishing_) camera_state_.publish(odometry_msg(p));

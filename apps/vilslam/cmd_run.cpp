@@ -12,6 +12,7 @@
 #include "pipeline/offline_runner.h"
 #include "pipeline/run_config.h"
 #include "pipeline/run_outputs.h"
+#include "pipeline/run_segments.h"
 #include "pipeline/timing_stats.h"
 #include "vilslam/command.h"
 #include "vilslam/dataset_options.h"
@@ -28,6 +29,7 @@ struct Options {
   double realtime_speed = 0.0;
   std::string save_map;
   std::string load_map;
+  std::vector<double> reset_at_s;
 };
 
 void print_latency(const char* name, const std::vector<double>& samples_ms) {
@@ -76,6 +78,15 @@ void print_summary(const OfflineRunResult& r) {
     std::printf("re-localized in the map at t_ns %lld; %zu map loops in the graph\n",
                 static_cast<long long>(*r.loop->relocalized_t_ns), r.loop->map_loops);
   }
+  for (std::size_t i = 1; i < r.segments.size(); ++i) {
+    const RunSegment& s = r.segments[i];
+    std::printf("segment %zu (reset at t_ns %lld): ", i, static_cast<long long>(s.start_t_ns));
+    if (s.relocalized_t_ns) {
+      std::printf("joined the map %.2f s after the reset\n", ns_to_s(*s.relocalized_t_ns - s.start_t_ns));
+    } else {
+      std::printf("never re-localized: its poses are in its own frame\n");
+    }
+  }
 }
 
 vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and write trajectories and timings",
@@ -97,6 +108,10 @@ vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and writ
                  "Re-localize in this saved map and give the LiDAR poses in its frame once there (vil with loop "
                  "closure; docs/loop.md, \"Map reuse\")")
       ->excludes("--save-map");
+  app.add_option("--reset-at", o->reset_at_s,
+                 "Reset the whole state at these times (s from the first event; repeatable): each new segment "
+                 "re-localizes in the map of the ones before (vil with loop closure; docs/loop.md, \"Forced resets\")")
+      ->excludes("--save-map");
   return [o, bag_args]() {
     OfflineRunConfig config = o->config_path.empty() ? OfflineRunConfig{} : load_run_config(o->config_path);
     config.mode = parse_run_mode(o->mode);
@@ -104,6 +119,7 @@ vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and writ
       throw InputError("--save-map", "a map needs --mode vil with loop closure enabled (its key frames)");
     }
     config.load_map = o->load_map;
+    config.reset_at_s = o->reset_at_s;
     config.realtime.speed = o->realtime_speed;
     const auto reader = open_dataset(o->dataset, vilslam::cli::dataset_options(*bag_args));
     OfflineRunResult result;
@@ -113,12 +129,10 @@ vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and writ
     }
     write_run_outputs(o->out_dir, config, result);
     if (!o->save_map.empty()) {
-      loop::SavedMap map;
-      map.rig = reader->calibration();
-      if (result.time_offset) map.rig.cam_time_offset_ns = s_to_ns(result.time_offset->offset_s);
-      map.poses = result.loop->lidar_final;
-      map.key_frames = std::move(result.loop->key_frame_data);
-      map.vocabulary_id = loop::vocabulary_identity(vocabulary_file(config.vocabulary));
+      RigCalibration rig = reader->calibration();
+      if (result.time_offset) rig.cam_time_offset_ns = s_to_ns(result.time_offset->offset_s);
+      loop::SavedMap map = empty_map(rig, loop::vocabulary_identity(vocabulary_file(config.vocabulary)));
+      join_map(map, *result.loop);
       loop::save_map(o->save_map, map);
       std::printf("wrote map %s (%zu key frames, %zu poses)\n", o->save_map.c_str(), map.key_frames.size(),
                   map.poses.size());

@@ -63,7 +63,7 @@ LoopCloser::LoopCloser(const LoopClosureConfig& config, const lidar::LidarConfig
   if (!vocabulary_ || vocabulary_->empty()) throw std::invalid_argument("LoopCloser needs a trained vocabulary");
 }
 
-void LoopCloser::load_map(std::vector<KeyFrame> key_frames, Trajectory poses) {
+void LoopCloser::load_map(std::vector<KeyFrame> key_frames, Trajectory poses, std::size_t resume_candidates) {
   for (std::size_t i = 0; i < key_frames.size(); ++i) {
     if (key_frames[i].pose_index >= poses.size()) {
       throw std::invalid_argument("loop closer: map key frame " + std::to_string(i) + " has no pose");
@@ -73,6 +73,7 @@ void LoopCloser::load_map(std::vector<KeyFrame> key_frames, Trajectory poses) {
   }
   map_key_frames_ = std::move(key_frames);
   map_poses_ = std::move(poses);
+  resume_candidates_ = std::min(resume_candidates, map_key_frames_.size());
 }
 
 bool LoopCloser::verify_candidates(const std::vector<LoopCandidate>& candidates, const KeyFrame& v,
@@ -107,8 +108,16 @@ std::vector<LoopCandidateRecord> LoopCloser::add_and_detect(KeyFrame key_frame,
   }
   if (!accepted && !map_key_frames_.empty()) {
     // A loaded map's key images: all of them, whatever their time (another run's clock).
-    const std::vector<LoopCandidate> in_map =
+    std::vector<LoopCandidate> in_map =
         map_database_.query(v.image.bow, std::numeric_limits<TimeNs>::max(), max_candidates, 0);
+    for (std::size_t id = map_key_frames_.size() - resume_candidates_; id < map_key_frames_.size(); ++id) {
+      const bool listed = std::any_of(in_map.begin(), in_map.end(),
+                                      [id](const LoopCandidate& c) { return c.id == static_cast<std::int64_t>(id); });
+      if (!listed) {
+        in_map.push_back({static_cast<std::int64_t>(id), map_key_frames_[id].image.t_ns,
+                          bow_score(v.image.bow, map_key_frames_[id].image.bow)});
+      }
+    }
     const auto T_W_L_of_map_pose = [this](std::size_t i) { return map_poses_.at(i).T_W_B; };
     verify_candidates(in_map, v, {map_key_frames_, T_W_L_of_map_pose, true}, T_W_L_of_pose, records);
   }

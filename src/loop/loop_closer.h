@@ -137,8 +137,11 @@ class LoopCloser {
   // A saved map's key frames and poses (loop/map_file.h): from now on every key frame's candidates not
   // accepted among this run's own are looked for among them too, with no time threshold (another run). Until
   // set_in_map_frame(true) this run's poses are in a frame of their own, so the odometry check skips them.
+  // resume_candidates: the map is this run's own before a reset, so the robot is near where it ends: its last
+  // resume_candidates key frames are verified at every query too, after the BoW ones, whatever their rank (in a
+  // corridor the BoW ranks places that look alike above the one the robot is at).
   // Throws std::invalid_argument when a key frame's pose index is outside the poses.
-  void load_map(std::vector<KeyFrame> key_frames, Trajectory poses);
+  void load_map(std::vector<KeyFrame> key_frames, Trajectory poses, std::size_t resume_candidates = 0);
   // This run's poses (T_W_L_of_pose) are now in the map's frame: its candidates get the odometry check, with
   // config.max_odometry_disagreement_m as the allowance.
   void set_in_map_frame(bool in_map_frame) { in_map_frame_ = in_map_frame; }
@@ -172,6 +175,7 @@ class LoopCloser {
   std::vector<KeyFrame> key_frames_;
   BowDatabase map_database_;
   std::vector<KeyFrame> map_key_frames_;
+  std::size_t resume_candidates_ = 0;
   Trajectory map_poses_;
   bool in_map_frame_ = false;
 };

@@ -14,6 +14,8 @@ double elapsed_ms(std::chrono::steady_clock::time_point start) {
 }
 
 constexpr TimeNs kRecentFramesNs = 2'000'000'000;  // stereo pairs kept as key image candidates
+// After a reset: the map's last key frames verified at every query (about the last 3 m of the route).
+constexpr std::size_t kResumeCandidates = 3;
 
 }  // namespace
 
@@ -28,10 +30,10 @@ LoopClosureModule::LoopClosureModule(const loop::LoopClosureConfig& config,
   if (config_.enabled) closer_.emplace(config_, lidar, vocabulary_);
 }
 
-void LoopClosureModule::load_map(loop::SavedMap map) {
+void LoopClosureModule::load_map(loop::SavedMap map, bool resume) {
   if (!closer_) throw std::invalid_argument("loading a map needs loop closure enabled");
   if (graph_.size() > 0) throw std::invalid_argument("a map is loaded before the first sweep");
-  closer_->load_map(std::move(map.key_frames), std::move(map.poses));
+  closer_->load_map(std::move(map.key_frames), std::move(map.poses), resume ? kResumeCandidates : 0);
 }
 
 void LoopClosureModule::stereo(const StereoFrame& frame) {

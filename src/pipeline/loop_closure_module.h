@@ -61,8 +61,9 @@ class LoopClosureModule {
   // loop candidates of every key frame; once relocalization_loops map loops agree, the graph moves into the
   // map's frame, the map loops join it as factors from the fixed map poses, and LiDAR mapping resumes on a
   // map that holds the saved key scans around it. Until then every output is in the run's own frame.
+  // resume: the map is this run's own before a reset (the robot is near where it ends; LoopCloser::load_map).
   // Throws std::invalid_argument with loop closure disabled or after the first sweep.
-  void load_map(loop::SavedMap map);
+  void load_map(loop::SavedMap map, bool resume = false);
   bool relocalized() const { return out_.relocalized_t_ns.has_value(); }
 
   // A stereo pair, its time already on the IMU clock. Completes a key frame waiting for its key image.

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <deque>
+#include <memory>
 #include <filesystem>
 #include <limits>
 #include <optional>
@@ -14,6 +16,8 @@
 #include <spdlog/spdlog.h>
 
 #include "common/error.h"
+#include "loop/map_file.h"
+#include "pipeline/run_segments.h"
 #include "pipeline/system.h"
 #include "pipeline/time_offset_pass.h"
 
@@ -31,6 +35,20 @@ void check_mode_fits(const DatasetReader& reader, RunMode mode) {
   if (mode != RunMode::kVio && (s.lidar_scans == 0 || !reader.calibration().has_lidar)) {
     throw InputError(s.path, "mode " + name + " needs LiDAR scans and a LiDAR calibration; this " + s.format +
                                  " dataset has " + std::to_string(s.lidar_scans) + " scans");
+  }
+}
+
+void check_resets(const OfflineRunConfig& config) {
+  if (config.reset_at_s.empty()) return;
+  if (config.mode != RunMode::kVil || !config.loop.enabled) {
+    throw InputError("--reset-at", "a reset re-localizes in the map built before it: mode vil with loop closure enabled");
+  }
+  double previous_s = 0.0;
+  for (double t_s : config.reset_at_s) {
+    if (!std::isfinite(t_s) || t_s <= previous_s) {
+      throw InputError("--reset-at", "reset times must be finite, positive and increasing (seconds from the first event)");
+    }
+    previous_s = t_s;
   }
 }
 
@@ -65,6 +83,7 @@ std::string run_mode_name(RunMode mode) {
 OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& config,
                              const std::function<void(double)>& progress) {
   check_mode_fits(reader, config.mode);
+  check_resets(config);
   const auto run_start = std::chrono::steady_clock::now();
   const double cpu_start_s = process_cpu_s();
   const DatasetSummary& summary = reader.summary();
@@ -104,7 +123,38 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
       rt->lidar_pose_latency_ms.push_back(c->since_ms(r.t_ns));
     };
   }
-  System system(calib, config, std::move(callbacks));
+  // Resets (run --reset-at): each segment is a new System, re-localizing in the map of the ones before it.
+  std::vector<TimeNs> resets_ns;
+  for (double reset_s : config.reset_at_s) resets_ns.push_back(summary.start_t_ns + s_to_ns(reset_s));
+  std::optional<loop::SavedMap> map;
+  if (!resets_ns.empty()) {
+    const std::uint64_t vocabulary_id = loop::vocabulary_identity(vocabulary_file(config.vocabulary));
+    map = config.load_map.empty() ? empty_map(calib, vocabulary_id) : load_checked_map(config.load_map, vocabulary_id, calib);
+  }
+  auto system = std::make_unique<System>(calib, config, callbacks);
+  // After a reset the robot is likely moving: the new VIO initializes by visual-inertial alignment.
+  OfflineRunConfig restart_config = config;
+  restart_config.vio.initializer.moving_start = true;
+  OfflineRunResult result;
+  TimeNs segment_start_t_ns = summary.start_t_ns;
+  std::size_t dropped_frames = 0, dropped_sweeps = 0;
+  QueueDepths depths;
+  const auto end_segment = [&]() {
+    dropped_frames += system->dropped_frames();
+    dropped_sweeps += system->dropped_sweeps();
+    const QueueDepths d = system->max_queue_depths();
+    depths = {std::max(depths.frontend, d.frontend), std::max(depths.smoother, d.smoother), std::max(depths.lidar, d.lidar)};
+    OfflineRunResult segment = system->finish();
+    if (resets_ns.empty()) {
+      result = std::move(segment);
+      return;
+    }
+    if (!join_map(*map, *segment.loop)) {
+      spdlog::warn("the segment from {:.3f} s never re-localized: its poses stay in its own frame, out of the map",
+                   ns_to_s(segment_start_t_ns - summary.start_t_ns));
+    }
+    append_segment(result, std::move(segment), segment_start_t_ns);
+  };
   const bool with_vio = config.mode != RunMode::kLidarOnly;
 
   // Real-time mode: a sweep is released at its end, when a live driver publishes it.
@@ -114,7 +164,7 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
   const auto release_until = [&](TimeNs t_ns) {
     while (!held_sweeps.empty() && held_sweeps.front().end_t_ns() <= t_ns) {
       wait_until(held_sweeps.front().end_t_ns());
-      system.push_scan(std::move(held_sweeps.front()));
+      system->push_scan(std::move(held_sweeps.front()));
       held_sweeps.pop_front();
     }
     wait_until(t_ns);
@@ -129,43 +179,49 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
   const double span_ns = std::max<double>(1.0, double(summary.end_t_ns - summary.start_t_ns));
   std::optional<TimeNs> first_t_ns;
   TimeNs last_t_ns = 0;
+  std::size_t next_reset = 0;
   while (auto event = reader.next()) {
     if (progress) progress(double(event->t_ns - summary.start_t_ns) / span_ns);
     if (!first_t_ns) first_t_ns = event->t_ns;
     last_t_ns = event->t_ns;
     if (clock) release_until(event->t_ns);
+    if (next_reset < resets_ns.size() && event->t_ns >= resets_ns[next_reset]) {
+      // Everything before the reset is forgotten but the map: a sweep still held (it began before) is lost.
+      held_sweeps.clear();
+      end_segment();
+      segment_start_t_ns = resets_ns[next_reset++];
+      spdlog::info("reset of the whole state at {:.3f} s", ns_to_s(segment_start_t_ns - summary.start_t_ns));
+      system = std::make_unique<System>(calib, restart_config, callbacks, *map);
+    }
     bool last_frame_handed_over = false;
     std::visit(
         [&](auto& data) {
           using T = std::decay_t<decltype(data)>;
           if constexpr (std::is_same_v<T, ImuSample>) {
             last_frame_handed_over = frames_read >= summary.stereo_frames && data.t_ns > last_frame_t_ns;
-            system.push_imu(data);
+            system->push_imu(data);
           }
           if constexpr (std::is_same_v<T, StereoFrame>) {
             last_frame_t_ns = data.t_ns + calib.cam_time_offset_ns;
             ++frames_read;
-            system.push_stereo(std::move(data));
+            system->push_stereo(std::move(data));
           }
           if constexpr (std::is_same_v<T, LidarScan>) {
             if (clock && config.mode != RunMode::kVio) held_sweeps.push_back(std::move(data));
-            else system.push_scan(std::move(data));
+            else system->push_scan(std::move(data));
           }
         },
         event->data);
-    if ((with_vio && last_frame_handed_over) || system.failed()) break;
+    if ((with_vio && last_frame_handed_over) || system->failed()) break;
   }
-  if (clock && !system.failed()) release_until(held_sweeps.empty() ? last_t_ns : held_sweeps.back().end_t_ns());
-  OfflineRunResult result = system.finish();
+  if (clock && !system->failed()) release_until(held_sweeps.empty() ? last_t_ns : held_sweeps.back().end_t_ns());
+  end_segment();
   result.time_offset = time_offset;
   if (stats) {
-    stats->dropped_frames = system.dropped_frames();
-    stats->dropped_sweeps = system.dropped_sweeps();
+    stats->dropped_frames = dropped_frames;
+    stats->dropped_sweeps = dropped_sweeps;
     stats->max_release_lag_ms = max_release_lag_ms;
-    const QueueDepths depths = system.max_queue_depths();
-    stats->max_queue_frontend = depths.frontend;
-    stats->max_queue_smoother = depths.smoother;
-    stats->max_queue_lidar = depths.lidar;
+    stats->max_queue_depth = depths;
     stats->cpu_s = process_cpu_s() - cpu_start_s;
     result.realtime = std::move(stats);
   }

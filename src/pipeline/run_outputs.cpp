@@ -86,9 +86,10 @@ std::string timings_json(RunMode mode, const OfflineRunResult& r, const std::vec
     json.key("dropped_sweeps").value(static_cast<std::uint64_t>(r.realtime->dropped_sweeps));
     json.key("max_release_lag_ms").value(r.realtime->max_release_lag_ms);
     json.key("max_queue_depth").begin_object();
-    json.key("frontend").value(static_cast<std::uint64_t>(r.realtime->max_queue_frontend));
-    json.key("smoother").value(static_cast<std::uint64_t>(r.realtime->max_queue_smoother));
-    json.key("lidar").value(static_cast<std::uint64_t>(r.realtime->max_queue_lidar));
+    const QueueDepths& depth = r.realtime->max_queue_depth;
+    json.key("frontend").value(static_cast<std::uint64_t>(depth.frontend));
+    json.key("smoother").value(static_cast<std::uint64_t>(depth.smoother));
+    json.key("lidar").value(static_cast<std::uint64_t>(depth.lidar));
     json.end_object();
     json.key("cpu_s").value(r.realtime->cpu_s);
     json.key("cpu_cores_used").value(r.run_wall_s > 0 ? r.realtime->cpu_s / r.run_wall_s : 0.0);
@@ -127,6 +128,15 @@ std::string time_offset_json(const TimeOffsetEstimate& e) {
 
 // Whether and when the run re-localized in the loaded map, where its own frame lay in the map's then (T_map_run:
 // translation and quaternion x y z w, as TUM rows), and the map candidates examined and accepted.
+// A pose as [x, y, z, qx, qy, qz, qw] (TUM's order).
+void write_pose(JsonWriter& json, const SE3& T) {
+  const Vec3& t = T.translation();
+  const Quat& q = T.quat();
+  json.begin_array();
+  for (double v : {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()}) json.value(v);
+  json.end_array();
+}
+
 std::string relocalization_json(const std::string& map_dir, const LoopClosureOutput& loop,
                                 const std::vector<loop::LoopCandidateRecord>& map_candidates) {
   std::size_t accepted = 0;
@@ -137,15 +147,38 @@ std::string relocalization_json(const std::string& map_dir, const LoopClosureOut
   json.key("relocalized").value(loop.relocalized_t_ns.has_value());
   if (loop.relocalized_t_ns) {
     json.key("relocalized_t_ns").value(static_cast<std::int64_t>(*loop.relocalized_t_ns));
-    const Vec3& t = loop.T_map_run.translation();
-    const Quat& q = loop.T_map_run.quat();
-    json.key("T_map_run").begin_array();
-    for (double v : {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()}) json.value(v);
-    json.end_array();
+    json.key("T_map_run");
+    write_pose(json, loop.T_map_run);
   }
   json.key("map_candidates").value(static_cast<std::uint64_t>(map_candidates.size()));
   json.key("map_candidates_accepted").value(static_cast<std::uint64_t>(accepted));
   json.key("map_loops_in_graph").value(static_cast<std::uint64_t>(loop.map_loops));
+  json.end_object();
+  return json.str();
+}
+
+// A run with resets: each segment, and when it joined the map of the ones before (docs/formats.md).
+std::string segments_json(const std::vector<RunSegment>& segments) {
+  JsonWriter json;
+  json.begin_object();
+  json.key("segments").begin_array();
+  for (const RunSegment& s : segments) {
+    json.begin_object();
+    json.key("start_t_ns").value(static_cast<std::int64_t>(s.start_t_ns));
+    json.key("sweeps").value(static_cast<std::uint64_t>(s.sweeps));
+    json.key("key_frames").value(static_cast<std::uint64_t>(s.key_frames));
+    json.key("relocalized").value(s.relocalized_t_ns.has_value());
+    if (s.relocalized_t_ns) {
+      json.key("relocalized_t_ns").value(static_cast<std::int64_t>(*s.relocalized_t_ns));
+      json.key("T_map_run");
+      write_pose(json, s.T_map_run);
+    }
+    json.key("map_candidates").value(static_cast<std::uint64_t>(s.map_candidates));
+    json.key("map_candidates_accepted").value(static_cast<std::uint64_t>(s.map_candidates_accepted));
+    json.key("map_loops_in_graph").value(static_cast<std::uint64_t>(s.map_loops));
+    json.end_object();
+  }
+  json.end_array();
   json.end_object();
   return json.str();
 }
@@ -191,9 +224,14 @@ void write_run_outputs(const std::string& out_dir, const OfflineRunConfig& confi
       for (const loop::LoopCandidateRecord& c : result.loop->candidates) (c.map_candidate ? in_map : own).push_back(c);
       write_file_atomic((partial / "loops.csv").string(), loop::loops_csv(own));
       write_file_atomic((partial / "loop_candidates.csv").string(), loop::loop_candidates_csv(own));
-      if (!config.load_map.empty()) {
+      if (!config.load_map.empty() || !result.segments.empty()) {
         write_file_atomic((partial / "map_candidates.csv").string(), loop::loop_candidates_csv(in_map));
+      }
+      if (!config.load_map.empty()) {
         write_file_atomic((partial / "relocalization.json").string(), relocalization_json(config.load_map, *result.loop, in_map));
+      }
+      if (!result.segments.empty()) {
+        write_file_atomic((partial / "segments.json").string(), segments_json(result.segments));
       }
     } else {
       Trajectory T_W_L;

@@ -39,9 +39,20 @@ struct OfflineRunConfig {
   // vil with loop closure: a saved map (loop/map_file.h) to re-localize in (docs/loop.md, "Map reuse"); not
   // part of the run YAML (run --load-map).
   std::string load_map;
+  // vil with loop closure: reset the whole state at these times (s from the first event, increasing); each new
+  // segment re-localizes in the map of the ones before it (docs/loop.md, "Forced resets"). Not in the YAML
+  // (run --reset-at).
+  std::vector<double> reset_at_s;
   TimeOffsetConfig time_offset;          // vio and vil: estimate the camera-IMU time offset before the run
   bool threads = true;  // the frontend, the smoother and the LiDAR side each on a thread (same output as without)
   RealtimeConfig realtime;  // speed 0: offline (deterministic); > 0: events on the wall clock (pipeline/realtime.h)
+};
+
+// The most messages that waited at once in each module's queue (0 for a module the mode does not run).
+struct QueueDepths {
+  std::size_t frontend = 0;
+  std::size_t smoother = 0;
+  std::size_t lidar = 0;
 };
 
 // Real-time mode only: each output's latency (wall time from its measurement's instant to its publication) and
@@ -55,9 +66,19 @@ struct RealtimeStats {
   std::size_t dropped_frames = 0;
   std::size_t dropped_sweeps = 0;
   double max_release_lag_ms = 0.0;  // how late the reader released an event (reading it took longer than its slot)
-  // The most messages that waited at once in the frontend's, the smoother's and the LiDAR side's queue.
-  std::size_t max_queue_frontend = 0, max_queue_smoother = 0, max_queue_lidar = 0;
+  QueueDepths max_queue_depth;
   double cpu_s = 0.0;  // CPU time of the whole process (every thread) over the run
+};
+
+// A run with resets: one segment, from its start to the next reset.
+struct RunSegment {
+  TimeNs start_t_ns = 0;    // the reset (the first event for the first segment)
+  std::size_t sweeps = 0;   // mapped
+  std::size_t key_frames = 0;
+  // When it joined the map of the segments before it (or a loaded map), and where its own frame lay there.
+  std::optional<TimeNs> relocalized_t_ns;
+  SE3 T_map_run;
+  std::size_t map_candidates = 0, map_candidates_accepted = 0, map_loops = 0;
 };
 
 struct OfflineRunResult {
@@ -75,6 +96,7 @@ struct OfflineRunResult {
   double data_s = 0;      // time span of the events read (the sensors' time)
   double run_wall_s = 0;  // wall time of run_offline (data_s / run_wall_s > 1: faster than real time)
   std::optional<RealtimeStats> realtime;  // when config.realtime.speed > 0
+  std::vector<RunSegment> segments;       // with resets (config.reset_at_s): one per segment, else none
 };
 
 }  // namespace vilslam

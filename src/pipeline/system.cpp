@@ -12,6 +12,7 @@
 #include "loop/map_file.h"
 #include "pipeline/lidar_feeder.h"
 #include "pipeline/live_propagator.h"
+#include "pipeline/run_segments.h"
 #include "pipeline/stage.h"
 
 namespace vilslam {
@@ -49,7 +50,8 @@ struct Shared {
 // the VIO's IMU-rate poses, grown exactly as the VIO published them, so it never reads the VIO's memory.
 class LidarSide {
  public:
-  LidarSide(const RigCalibration& calib, const OfflineRunConfig& config, OfflineRunResult* result, Shared* shared)
+  LidarSide(const RigCalibration& calib, const OfflineRunConfig& config, std::optional<loop::SavedMap> map,
+            OfflineRunResult* result, Shared* shared)
       : result_(result), shared_(shared) {
     const bool with_vio = config.mode == RunMode::kVil;  // the LiDAR side exists only in vil and lidar-only
     if (with_vio) {
@@ -58,10 +60,10 @@ class LidarSide {
         vocabulary = std::make_shared<const Vocabulary>(Vocabulary::load(vocabulary_file(config.vocabulary)));
       }
       loop_.emplace(config.loop, config.graph, vocabulary, calib, config.frontend, config.lidar.lidar, &imu_motion_);
-      if (!config.load_map.empty()) {
-        loop::SavedMap map = loop::load_map(config.load_map);
-        loop::check_map_fits(map, config.load_map, loop::vocabulary_identity(vocabulary_file(config.vocabulary)), calib);
-        loop_->load_map(std::move(map));
+      if (map) {
+        loop_->load_map(std::move(*map), true);
+      } else if (!config.load_map.empty()) {
+        loop_->load_map(load_checked_map(config.load_map, loop::vocabulary_identity(vocabulary_file(config.vocabulary)), calib));
       }
     }
     lidar_.emplace(config.lidar, calib, with_vio ? &imu_poses_ : nullptr, with_vio ? &imu_motion_ : nullptr,
@@ -224,13 +226,14 @@ class FrontendSide {
 }  // namespace
 
 struct System::Impl {
-  Impl(const RigCalibration& calib, const OfflineRunConfig& config, SystemCallbacks callbacks) {
+  Impl(const RigCalibration& calib, const OfflineRunConfig& config, SystemCallbacks callbacks,
+       std::optional<loop::SavedMap> map) {
     const bool with_vio = config.mode != RunMode::kLidarOnly;
     if (config.mode != RunMode::kVio && !calib.has_lidar) {
       throw InputError("rig calibration", "mode " + run_mode_name(config.mode) + " needs a LiDAR calibration");
     }
-    if (!config.load_map.empty() && (config.mode != RunMode::kVil || !config.loop.enabled)) {
-      throw InputError(config.load_map, "a map is re-localized in by mode vil with loop closure enabled");
+    if ((map || !config.load_map.empty()) && (config.mode != RunMode::kVil || !config.loop.enabled)) {
+      throw InputError(map ? "map" : config.load_map, "a map is re-localized in by mode vil with loop closure enabled");
     }
     shared.callbacks = std::move(callbacks);
     if (with_vio && shared.callbacks.imu_pose) {
@@ -242,7 +245,7 @@ struct System::Impl {
     const std::size_t capacity = shared.load ? config.realtime.queue_capacity : kDefaultStageCapacity;
     // The modules, downstream first so that they outlive the upstream ones that feed them.
     if (config.mode != RunMode::kVio) {
-      lidar_side.emplace(calib, config, &result, &shared);
+      lidar_side.emplace(calib, config, std::move(map), &result, &shared);
       lidar.emplace([this](LidarMessage&& m) { lidar_side->handle(std::move(m)); }, config.threads, capacity);
     }
     if (with_vio) {
@@ -264,8 +267,9 @@ struct System::Impl {
   std::optional<Stage<FrontendMessage>> frontend;
 };
 
-System::System(const RigCalibration& calib, const OfflineRunConfig& config, SystemCallbacks callbacks)
-    : impl_(std::make_unique<Impl>(calib, config, std::move(callbacks))) {}
+System::System(const RigCalibration& calib, const OfflineRunConfig& config, SystemCallbacks callbacks,
+               std::optional<loop::SavedMap> map)
+    : impl_(std::make_unique<Impl>(calib, config, std::move(callbacks), std::move(map))) {}
 
 System::~System() = default;
 

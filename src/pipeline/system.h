@@ -5,9 +5,11 @@
 // drives it from a dataset (pipeline/offline_runner.h). docs/pipeline.md, "The System API".
 #include <functional>
 #include <memory>
+#include <optional>
 
 #include "common/calibration.h"
 #include "common/types.h"
+#include "loop/map_file.h"
 #include "pipeline/run_types.h"
 
 namespace vilslam {
@@ -31,20 +33,16 @@ struct SystemCallbacks {
   std::function<void(const TimedPose& T_W_L, const lidar::FeatureScan& features_L)> lidar_features;
 };
 
-// The most messages that waited at once in each module's queue (0 for a module the mode does not run).
-struct QueueDepths {
-  std::size_t frontend = 0;
-  std::size_t smoother = 0;
-  std::size_t lidar = 0;
-};
-
 class System {
  public:
   // calib: the rig as the estimator knows it, the camera-IMU time offset included (sensor times are moved to
   // the IMU clock inside). config.realtime.speed > 0 turns on the overload policy of pipeline/realtime.h
   // (push_stereo / push_scan drop when too many wait) and the live queue capacity.
-  // Throws InputError when the mode needs a sensor the calibration lacks.
-  System(const RigCalibration& calib, const OfflineRunConfig& config, SystemCallbacks callbacks = {});
+  // map: the map of this run before a reset (pipeline/run_segments.h), to re-localize in as in config.load_map's
+  // (docs/loop.md, "Map reuse", "Forced resets"), its last key frames verified at every query: the robot is near.
+  // Throws InputError when the mode needs a sensor the calibration lacks, or a map without vil and loop closure.
+  System(const RigCalibration& calib, const OfflineRunConfig& config, SystemCallbacks callbacks = {},
+         std::optional<loop::SavedMap> map = std::nullopt);
   ~System();
   System(const System&) = delete;
   System& operator=(const System&) = delete;

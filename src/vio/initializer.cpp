@@ -31,8 +31,9 @@ Initialization static_initialization(const std::vector<ImuSample>& samples, Time
   Initialization init;
   init.state.t_ns = t_ns;
   init.state.R_W_I = Eigen::AngleAxisd(-yaw, Vec3::UnitZ()).toRotationMatrix() * R_tilt;
-  init.state.bias_gyro_rad_s = gyro_mean;
   init.is_static = accel_std <= config.max_accel_std_m_s2 && gyro_std <= config.max_gyro_std_rad_s;
+  // Moving (a reset mid-run), the mean rate is the motion's, not the bias: start from 0 and let the prior hold it.
+  init.state.bias_gyro_rad_s = init.is_static ? gyro_mean : Vec3::Zero();
   init.samples = n;
   return init;
 }

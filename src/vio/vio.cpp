@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/error.h"
+#include "vio/visual_inertial_alignment.h"
 
 namespace vilslam {
 namespace {
@@ -45,6 +46,10 @@ void Vio::add_frame(const FrontendOutput& frame) {
     throw InputError(kSource, "frame at t_ns " + std::to_string(frame.t_ns) + " is not after the previous one");
   }
   if (imu_.empty() || imu_.front().t_ns > frame.t_ns) return;
+  if (!initialized() && config_.initializer.moving_start) {
+    initialize_moving(frame);
+    return;
+  }
   std::optional<TimeNs> join_t_ns;  // where the old and the new propagation are joined in O
   std::optional<SE3> T_W_I_old;
   if (!initialized()) {
@@ -73,6 +78,34 @@ void Vio::add_frame(const FrontendOutput& frame) {
     T_O_W_ = T_O_W_ * *T_W_I_old * propagator_.state_at(*join_t_ns).T_W_I().inverse();
   }
   publish_state();
+}
+
+void Vio::initialize_moving(const FrontendOutput& frame) {
+  if (!alignment_frames_.empty() && frame.t_ns <= alignment_frames_.back().t_ns) {
+    throw InputError(kSource, "frame at t_ns " + std::to_string(frame.t_ns) + " is not after the previous one");
+  }
+  alignment_frames_.push_back(frame);
+  if (alignment_frames_.size() < static_cast<std::size_t>(config_.initializer.alignment.frames)) return;
+  const std::vector<FrontendOutput> window(alignment_frames_.begin(), alignment_frames_.end());
+  const VisualInertialAlignment a = align_visual_inertial(window, imu_, calib_, calib_.cam0.fx,
+                                                          config_.smoother.gravity_m_s2, config_.initializer.alignment);
+  if (!a.state) {
+    alignment_frames_.pop_front();
+    // Keep the samples from the last one at or before the window's first frame on.
+    const auto first_after = std::upper_bound(imu_.begin(), imu_.end(), alignment_frames_.front().t_ns,
+                                              [](TimeNs t, const ImuSample& s) { return t < s.t_ns; });
+    if (first_after != imu_.begin()) imu_.erase(imu_.begin(), first_after - 1);
+    return;
+  }
+  Vec15 sigma;
+  sigma << Vec3::Constant(config_.prior_rotation_sigma_rad), Vec3::Constant(config_.prior_position_sigma_m),
+      Vec3::Constant(config_.moving_velocity_sigma_m_s), Vec3::Constant(config_.prior_gyro_bias_sigma_rad_s),
+      Vec3::Constant(config_.prior_accel_bias_sigma_m_s2);
+  smoother_.initialize(*a.state, sigma, window.front());
+  alignment_frames_.clear();
+  propagator_.reset(smoother_.newest(), imu_);
+  publish_state();
+  for (std::size_t k = 1; k < window.size(); ++k) add_frame(window[k]);
 }
 
 void Vio::publish_state() {

@@ -1,6 +1,7 @@
 #pragma once
 // The stereo VIO: IMU samples and the visual frontend's stereo matches in, camera-rate optimized states
 // and IMU-rate propagated poses out (paper Sec. "Stereo visual inertial odometry").
+#include <deque>
 #include <functional>
 #include <optional>
 #include <vector>
@@ -54,7 +55,9 @@ class Vio {
   // Samples must arrive in strictly increasing time; feed every sample up to a frame's time before it.
   // Throws InputError for a sample out of order or not finite.
   void add_imu(const ImuSample& sample);
-  // Throws InputError for a frame out of order. A frame before any IMU sample is skipped.
+  // Throws InputError for a frame out of order. A frame before any IMU sample is skipped. With
+  // config.initializer.moving_start the first frames wait for the visual-inertial alignment; once it succeeds
+  // they are all handed to the smoother (their states published then), while it fails the oldest is dropped.
   void add_frame(const FrontendOutput& frame);
 
   void on_state(std::function<void(const VioStateOutput&)> callback) { on_state_ = std::move(callback); }
@@ -67,12 +70,15 @@ class Vio {
 
  private:
   void publish_state();
+  // moving_start: collects the alignment window, initializes from it once it aligns.
+  void initialize_moving(const FrontendOutput& frame);
 
   VioConfig config_;
   RigCalibration calib_;
   Smoother smoother_;
   Propagator propagator_;
   std::vector<ImuSample> imu_;  // samples from just before the newest state on
+  std::deque<FrontendOutput> alignment_frames_;  // moving_start: the window not yet aligned
   std::optional<VioStateOutput> latest_state_;
   std::optional<VioImuOutput> latest_imu_;
   SE3 T_O_W_;  // the jump-free frame O of VioImuOutput::T_O_I

@@ -19,7 +19,13 @@ YamlFields vio_yaml_fields(VioConfig& c) {
                                         yaml_value("min_step_norm", lm.min_step_norm)})}),
       yaml_section("initializer", {yaml_value("averaging_window_s", i.averaging_window_s),
                                    yaml_value("max_accel_std_m_s2", i.max_accel_std_m_s2),
-                                   yaml_value("max_gyro_std_rad_s", i.max_gyro_std_rad_s)}),
+                                   yaml_value("max_gyro_std_rad_s", i.max_gyro_std_rad_s),
+                                   yaml_value("moving_start", i.moving_start),
+                                   yaml_section("alignment",
+                                                {yaml_value("frames", i.alignment.frames),
+                                                 yaml_value("min_pnp_inliers", i.alignment.min_pnp_inliers),
+                                                 yaml_value("max_rotation_mismatch_rad", i.alignment.max_rotation_mismatch_rad),
+                                                 yaml_value("max_gravity_error_m_s2", i.alignment.max_gravity_error_m_s2)})}),
       yaml_value("prior_rotation_sigma_rad", c.prior_rotation_sigma_rad),
       yaml_value("moving_rotation_sigma_rad", c.moving_rotation_sigma_rad),
       yaml_value("prior_position_sigma_m", c.prior_position_sigma_m),
@@ -47,6 +53,10 @@ void validate_vio_config(const VioConfig& c, const std::string& source) {
   require(i.averaging_window_s > 0, "initializer.averaging_window_s must be > 0");
   require(i.max_accel_std_m_s2 > 0, "initializer.max_accel_std_m_s2 must be > 0");
   require(i.max_gyro_std_rad_s > 0, "initializer.max_gyro_std_rad_s must be > 0");
+  require(i.alignment.frames >= 3, "initializer.alignment.frames must be >= 3");
+  require(i.alignment.min_pnp_inliers >= 4, "initializer.alignment.min_pnp_inliers must be >= 4");
+  require(i.alignment.max_rotation_mismatch_rad > 0, "initializer.alignment.max_rotation_mismatch_rad must be > 0");
+  require(i.alignment.max_gravity_error_m_s2 > 0, "initializer.alignment.max_gravity_error_m_s2 must be > 0");
   require(c.prior_rotation_sigma_rad > 0 && c.moving_rotation_sigma_rad > 0,
           "prior_rotation_sigma_rad and moving_rotation_sigma_rad must be > 0");
   require(c.prior_position_sigma_m > 0, "prior_position_sigma_m must be > 0");

@@ -179,5 +179,20 @@ TEST(Vio, StaticInitializationLevelsGravity) {
   EXPECT_LT((init.state.bias_gyro_rad_s - Vec3(0.01, -0.02, 0.005)).norm(), 1e-12);
 }
 
+// Turning (a reset while the robot drives a curve): the mean rate is the turn, so the gyro bias starts at 0.
+TEST(Vio, MovingInitializationDoesNotTakeTheTurnForABias) {
+  std::vector<ImuSample> samples;
+  for (int k = 0; k < 200; ++k) {
+    ImuSample s;
+    s.t_ns = k * 5'000'000;
+    s.gyro_rad_s = Vec3(0, 0, 0.3 + 0.2 * std::sin(0.05 * k));  // a yaw rate that changes
+    s.accel_m_s2 = Vec3(0.4 * std::cos(0.05 * k), 0.36, 9.81);
+    samples.push_back(s);
+  }
+  const Initialization init = static_initialization(samples, samples.back().t_ns, InitializerConfig{});
+  EXPECT_FALSE(init.is_static);
+  EXPECT_EQ(init.state.bias_gyro_rad_s, Vec3::Zero());
+}
+
 }  // namespace
 }  // namespace vilslam

@@ -26,6 +26,12 @@ initializer:
   averaging_window_s: 0.5
   max_accel_std_m_s2: 0.4
   max_gyro_std_rad_s: 0.02
+  moving_start: true
+  alignment:
+    frames: 12
+    min_pnp_inliers: 20
+    max_rotation_mismatch_rad: 0.03
+    max_gravity_error_m_s2: 0.7
 prior_rotation_sigma_rad: 0.03
 moving_rotation_sigma_rad: 0.2
 prior_position_sigma_m: 0.002
@@ -69,6 +75,11 @@ TEST(VioConfigYaml, ReadsEveryKey) {
   EXPECT_EQ(c.initializer.averaging_window_s, 0.5);
   EXPECT_EQ(c.initializer.max_accel_std_m_s2, 0.4);
   EXPECT_EQ(c.initializer.max_gyro_std_rad_s, 0.02);
+  EXPECT_TRUE(c.initializer.moving_start);
+  EXPECT_EQ(c.initializer.alignment.frames, 12);
+  EXPECT_EQ(c.initializer.alignment.min_pnp_inliers, 20);
+  EXPECT_EQ(c.initializer.alignment.max_rotation_mismatch_rad, 0.03);
+  EXPECT_EQ(c.initializer.alignment.max_gravity_error_m_s2, 0.7);
   EXPECT_EQ(c.prior_rotation_sigma_rad, 0.03);
   EXPECT_EQ(c.moving_rotation_sigma_rad, 0.2);
   EXPECT_EQ(c.prior_position_sigma_m, 0.002);
@@ -103,6 +114,8 @@ TEST(VioConfigYaml, BadValuesNameTheKey) {
       {"smoother: 4\n", "smoother"},
       {"initializer:\n  averaging_window_s: [1, 2]\n", "initializer.averaging_window_s"},
       {"initializer:\n  max_gyro_std_rad_s: -0.1\n", "initializer.max_gyro_std_rad_s"},
+      {"initializer:\n  alignment:\n    frames: 2\n", "initializer.alignment.frames"},
+      {"initializer:\n  moving_start: maybe\n", "initializer.moving_start"},
       {"prior_position_sigma_m: 0\n", "prior_position_sigma_m"},
       {"window_size: 4\n", "window_size"},
   };

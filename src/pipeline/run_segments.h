@@ -1,0 +1,31 @@
+#pragma once
+// A run cut into segments by resets of the whole state (run --reset-at; docs/loop.md, "Forced resets"): each
+// segment starts a new System, which re-localizes in the map of the segments before it (the map-reuse
+// machinery, in memory). These put a segment's outputs after the earlier ones' and grow that map.
+#include <cstdint>
+#include <string>
+
+#include "common/calibration.h"
+#include "loop/map_file.h"
+#include "pipeline/run_types.h"
+
+namespace vilslam {
+
+// The saved map in dir, checked to fit the run's vocabulary and rig (loop::load_map, loop::check_map_fits).
+loop::SavedMap load_checked_map(const std::string& dir, std::uint64_t vocabulary_id, const RigCalibration& rig);
+
+// An empty map of this rig and vocabulary (vocabulary_identity of its file).
+loop::SavedMap empty_map(const RigCalibration& rig, std::uint64_t vocabulary_id);
+
+// Appends a run's (or a segment's) key frames and final poses to the map. The first run defines the map's
+// frame; a later one joins only when it re-localized in the map (its final poses are then in the map's frame):
+// returns false, and leaves the map as it was, when it did not. Needs the run's loop closure output.
+bool join_map(loop::SavedMap& map, const LoopClosureOutput& run);
+
+// Appends a segment's outputs to the run so far: trajectories, per-frame and per-sweep series, loop
+// candidates and key frames one after the other (each segment's VIO and odometry in its own frame, its
+// final poses in the map's once re-localized), counts added up, and the segment's entry in run.segments.
+// start_t_ns: the instant the segment's data begins.
+void append_segment(OfflineRunResult& run, OfflineRunResult&& segment, TimeNs start_t_ns);
+
+}  // namespace vilslam
