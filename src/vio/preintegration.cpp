@@ -1,6 +1,7 @@
 #include "vio/preintegration.h"
 
 #include <algorithm>
+#include <iterator>
 #include <stdexcept>
 
 namespace vilslam {
@@ -8,7 +9,8 @@ namespace vilslam {
 Preintegration::Preintegration(const Vec3& bias_gyro_rad_s, const Vec3& bias_accel_m_s2, const ImuNoise& noise)
     : bias_gyro_(bias_gyro_rad_s), bias_accel_(bias_accel_m_s2), noise_(noise) {}
 
-void Preintegration::integrate(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, double dt_s) {
+void Preintegration::integrate(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, double dt_s, double held_rate_sigma_rad_s,
+                               double held_accel_sigma_m_s2) {
   if (dt_s <= 0) return;
   const Vec3 omega = gyro_rad_s - bias_gyro_;
   const Vec3 acc = accel_m_s2 - bias_accel_;
@@ -27,10 +29,13 @@ void Preintegration::integrate(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, d
   B.block<3, 3>(0, 0) = Jr_step * dt_s;
   B.block<3, 3>(3, 3) = delta_R_ * dt_s;
   B.block<3, 3>(6, 3) = 0.5 * delta_R_ * dt2;
-  // Discrete-time noise covariance from the continuous densities: sigma_d^2 = sigma^2 / dt.
+  // Discrete-time noise covariance from the continuous densities: sigma_d^2 = sigma^2 / dt; a held
+  // measurement's own error is constant over the step, so its variance is added as it is.
   Eigen::Matrix<double, 6, 1> q;
-  q << Vec3::Constant(noise_.gyro_noise_density * noise_.gyro_noise_density / dt_s),
-      Vec3::Constant(noise_.accel_noise_density * noise_.accel_noise_density / dt_s);
+  q << Vec3::Constant(noise_.gyro_noise_density * noise_.gyro_noise_density / dt_s +
+                      held_rate_sigma_rad_s * held_rate_sigma_rad_s),
+      Vec3::Constant(noise_.accel_noise_density * noise_.accel_noise_density / dt_s +
+                     held_accel_sigma_m_s2 * held_accel_sigma_m_s2);
   covariance_ = A * covariance_ * A.transpose() + B * q.asDiagonal() * B.transpose();
 
   // Bias Jacobians, Appendix B eq. (69)-(70); positions and velocities use the values before this step.
@@ -80,7 +85,8 @@ ImuSample sample_at(const std::vector<ImuSample>& samples, TimeNs t_ns) {
 
 }  // namespace
 
-void integrate_samples(const std::vector<ImuSample>& samples, TimeNs t0_ns, TimeNs t1_ns, Preintegration& preint) {
+void integrate_samples(const std::vector<ImuSample>& samples, TimeNs t0_ns, TimeNs t1_ns, Preintegration& preint,
+                       const ImuGapModel& gap) {
   if (samples.empty()) throw std::invalid_argument("integrate_samples: no IMU samples");
   if (t1_ns < t0_ns) throw std::invalid_argument("integrate_samples: t1 before t0");
   // Step boundaries: t0, every sample time strictly inside (t0, t1), t1.
@@ -90,7 +96,14 @@ void integrate_samples(const std::vector<ImuSample>& samples, TimeNs t0_ns, Time
   while (a < t1_ns) {
     const TimeNs b = (it != samples.end() && it->t_ns < t1_ns) ? it->t_ns : t1_ns;
     const ImuSample mid = sample_at(samples, a + (b - a) / 2);
-    preint.integrate(mid.gyro_rad_s, mid.accel_m_s2, ns_to_s(b - a));
+    // The sample interval holding this step: [previous sample, it] (it is the first sample after a).
+    const bool in_gap = it != samples.begin() && it != samples.end() &&
+                        ns_to_s(it->t_ns - std::prev(it)->t_ns) > gap.max_step_s;
+    if (in_gap) {
+      preint.integrate(mid.gyro_rad_s, mid.accel_m_s2, ns_to_s(b - a), gap.rate_sigma_rad_s, gap.accel_sigma_m_s2);
+    } else {
+      preint.integrate(mid.gyro_rad_s, mid.accel_m_s2, ns_to_s(b - a));
+    }
     a = b;
     if (it != samples.end()) ++it;
   }

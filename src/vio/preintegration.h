@@ -12,13 +12,25 @@ namespace vilslam {
 
 using Mat9 = Eigen::Matrix<double, 9, 9>;
 
+// Samples missing from the stream (an IMU gap, docs/vio.md "IMU gaps"): across a step longer than
+// max_step_s the interpolated measurement is a guess, off by the rig's unmeasured motion. That error is
+// held over the step, not white: its 1-sigma rate and acceleration enter the step's noise undivided by dt,
+// so the factor's covariance grows as (sigma dt)^2 and the smoother leans on vision across the gap.
+struct ImuGapModel {
+  double max_step_s = 0.05;           // longer sample intervals are gaps (nominal IMU periods: 2.5-10 ms)
+  double rate_sigma_rad_s = 1.0;      // angular rate the rig may have had that the held sample misses
+  double accel_sigma_m_s2 = 3.0;      // likewise, acceleration
+};
+
 class Preintegration {
  public:
   // Preintegrates with the bias estimate (bias_gyro, bias_accel) held fixed (Forster's b_bar_i).
   Preintegration(const Vec3& bias_gyro_rad_s, const Vec3& bias_accel_m_s2, const ImuNoise& noise);
 
-  // One Euler step of length dt_s with raw measurements held constant over the step.
-  void integrate(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, double dt_s);
+  // One Euler step of length dt_s with raw measurements held constant over the step. held: the 1-sigma
+  // error of the held measurements themselves (ImuGapModel; zero when the samples are there).
+  void integrate(const Vec3& gyro_rad_s, const Vec3& accel_m_s2, double dt_s, double held_rate_sigma_rad_s = 0,
+                 double held_accel_sigma_m_s2 = 0);
 
   double dt_s() const { return dt_s_; }
   const Vec3& bias_gyro_lin() const { return bias_gyro_; }
@@ -52,8 +64,10 @@ class Preintegration {
 
 // Integrates the samples over [t0_ns, t1_ns]. The signal is taken as piecewise linear between samples;
 // each Euler step spans the overlap of [t0, t1] with one sample interval and uses the interpolated
-// measurement at the step's midpoint. Outside the samples' span the nearest sample is held.
+// measurement at the step's midpoint. Outside the samples' span the nearest sample is held. A step inside a
+// sample interval longer than gap.max_step_s carries gap's held-measurement noise.
 // Throws std::invalid_argument when samples is empty or t1_ns < t0_ns.
-void integrate_samples(const std::vector<ImuSample>& samples, TimeNs t0_ns, TimeNs t1_ns, Preintegration& preint);
+void integrate_samples(const std::vector<ImuSample>& samples, TimeNs t0_ns, TimeNs t1_ns, Preintegration& preint,
+                       const ImuGapModel& gap = {});
 
 }  // namespace vilslam

@@ -64,7 +64,7 @@ void Vio::add_frame(const FrontendOutput& frame) {
     T_W_I_old = propagator_.state_at(*join_t_ns).T_W_I();
     const NavState& x = smoother_.newest();
     Preintegration preint(x.bias_gyro_rad_s, x.bias_accel_m_s2, calib_.imu);
-    integrate_samples(imu_, x.t_ns, frame.t_ns, preint);
+    integrate_samples(imu_, x.t_ns, frame.t_ns, preint, config_.imu_gap);
     smoother_.add_frame(preint, frame);
   }
   // Keep the samples from the last one at or before the newest state on.

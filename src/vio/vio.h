@@ -18,6 +18,7 @@ namespace vilslam {
 struct VioConfig {
   SmootherConfig smoother;
   InitializerConfig initializer;
+  ImuGapModel imu_gap;  // samples missing: the IMU factor across them is weakened (vio/preintegration.h)
   // Standard deviations of the first state's prior: rotation (rad), position (m), velocity (m/s),
   // gyro bias (rad/s), accel bias (m/s^2). Yaw and position are a gauge choice; a moving start gets
   // wider rotation and velocity priors (the averaged specific force then includes the acceleration).

@@ -8,6 +8,7 @@ YamlFields vio_yaml_fields(VioConfig& c) {
   SmootherConfig& s = c.smoother;
   LmConfig& lm = s.lm;
   InitializerConfig& i = c.initializer;
+  ImuGapModel& g = c.imu_gap;
   return {
       yaml_section("smoother",
                    {yaml_value("window_size", s.window_size), yaml_value("pixel_sigma_px", s.pixel_sigma_px),
@@ -26,6 +27,8 @@ YamlFields vio_yaml_fields(VioConfig& c) {
                                                  yaml_value("min_pnp_inliers", i.alignment.min_pnp_inliers),
                                                  yaml_value("max_rotation_mismatch_rad", i.alignment.max_rotation_mismatch_rad),
                                                  yaml_value("max_gravity_error_m_s2", i.alignment.max_gravity_error_m_s2)})}),
+      yaml_section("imu_gap", {yaml_value("max_step_s", g.max_step_s), yaml_value("rate_sigma_rad_s", g.rate_sigma_rad_s),
+                               yaml_value("accel_sigma_m_s2", g.accel_sigma_m_s2)}),
       yaml_value("prior_rotation_sigma_rad", c.prior_rotation_sigma_rad),
       yaml_value("moving_rotation_sigma_rad", c.moving_rotation_sigma_rad),
       yaml_value("prior_position_sigma_m", c.prior_position_sigma_m),
@@ -57,6 +60,9 @@ void validate_vio_config(const VioConfig& c, const std::string& source) {
   require(i.alignment.min_pnp_inliers >= 4, "initializer.alignment.min_pnp_inliers must be >= 4");
   require(i.alignment.max_rotation_mismatch_rad > 0, "initializer.alignment.max_rotation_mismatch_rad must be > 0");
   require(i.alignment.max_gravity_error_m_s2 > 0, "initializer.alignment.max_gravity_error_m_s2 must be > 0");
+  require(c.imu_gap.max_step_s > 0, "imu_gap.max_step_s must be > 0");
+  require(c.imu_gap.rate_sigma_rad_s >= 0 && c.imu_gap.accel_sigma_m_s2 >= 0,
+          "imu_gap.rate_sigma_rad_s and imu_gap.accel_sigma_m_s2 must be >= 0");
   require(c.prior_rotation_sigma_rad > 0 && c.moving_rotation_sigma_rad > 0,
           "prior_rotation_sigma_rad and moving_rotation_sigma_rad must be > 0");
   require(c.prior_position_sigma_m > 0, "prior_position_sigma_m must be > 0");

@@ -32,6 +32,10 @@ initializer:
     min_pnp_inliers: 20
     max_rotation_mismatch_rad: 0.03
     max_gravity_error_m_s2: 0.7
+imu_gap:
+  max_step_s: 0.1
+  rate_sigma_rad_s: 0.5
+  accel_sigma_m_s2: 2.0
 prior_rotation_sigma_rad: 0.03
 moving_rotation_sigma_rad: 0.2
 prior_position_sigma_m: 0.002
@@ -80,6 +84,9 @@ TEST(VioConfigYaml, ReadsEveryKey) {
   EXPECT_EQ(c.initializer.alignment.min_pnp_inliers, 20);
   EXPECT_EQ(c.initializer.alignment.max_rotation_mismatch_rad, 0.03);
   EXPECT_EQ(c.initializer.alignment.max_gravity_error_m_s2, 0.7);
+  EXPECT_EQ(c.imu_gap.max_step_s, 0.1);
+  EXPECT_EQ(c.imu_gap.rate_sigma_rad_s, 0.5);
+  EXPECT_EQ(c.imu_gap.accel_sigma_m_s2, 2.0);
   EXPECT_EQ(c.prior_rotation_sigma_rad, 0.03);
   EXPECT_EQ(c.moving_rotation_sigma_rad, 0.2);
   EXPECT_EQ(c.prior_position_sigma_m, 0.002);
@@ -103,6 +110,8 @@ TEST(VioConfigYaml, MissingKeysKeepDefaults) {
 TEST(VioConfigYaml, BadValuesNameTheKey) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"smoother:\n  window_size: -3\n", "smoother.window_size"},
+      {"imu_gap:\n  max_step_s: 0\n", "imu_gap.max_step_s"},
+      {"imu_gap:\n  accel_sigma_m_s2: -1\n", "imu_gap.accel_sigma_m_s2"},
       {"smoother:\n  window_size: 1\n", "smoother.window_size"},
       {"smoother:\n  window_size: 2.5\n", "smoother.window_size"},
       {"smoother:\n  window_size: ten\n", "smoother.window_size"},
