@@ -13,6 +13,7 @@
 #include "pipeline/run_config.h"
 #include "pipeline/run_outputs.h"
 #include "pipeline/run_segments.h"
+#include "pipeline/run_status.h"
 #include "pipeline/timing_stats.h"
 #include "vilslam/command.h"
 #include "vilslam/dataset_options.h"
@@ -45,7 +46,18 @@ void print_realtime(const RealtimeStats& rt) {
   print_latency("LiDAR pose", rt.lidar_pose_latency_ms);
 }
 
-void print_summary(const OfflineRunResult& r) {
+// What the modules went through: each stretch of a non-nominal status (pipeline/run_status.h).
+void print_statuses(const OfflineRunResult& r, TimeNs start_t_ns) {
+  for (const StatusStretch& s : status_stretches(r)) {
+    std::printf("%s %s from %.2f to %.2f s (%zu %s", s.module.c_str(), s.status.c_str(),
+                ns_to_s(s.begin_t_ns - start_t_ns), ns_to_s(s.end_t_ns - start_t_ns), s.count,
+                s.module == "vio" ? "states" : "sweeps");
+    if (s.gap_s > 0) std::printf(", %.2f s without %s", s.gap_s, s.module == "vio" ? "IMU samples" : "sweeps");
+    std::printf(")\n");
+  }
+}
+
+void print_summary(const OfflineRunResult& r, TimeNs start_t_ns) {
   const TimingSummary fe = summarize_timings(r.frontend_ms);
   const TimingSummary sm = summarize_timings(r.smoother_ms);
   std::printf("%.1f s of data in %.1f s wall (%.2fx real time)\n", r.data_s, r.run_wall_s,
@@ -55,6 +67,7 @@ void print_summary(const OfflineRunResult& r) {
   std::printf("frontend ms: median %.2f p95 %.2f max %.2f\n", fe.median_ms, fe.p95_ms, fe.max_ms);
   std::printf("smoother ms: median %.2f p95 %.2f max %.2f\n", sm.median_ms, sm.p95_ms, sm.max_ms);
   if (r.realtime) print_realtime(*r.realtime);
+  print_statuses(r, start_t_ns);
   if (r.lidar.empty()) return;
   std::vector<double> lidar_ms;
   int degenerate = 0;
@@ -137,7 +150,7 @@ vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and writ
       std::printf("wrote map %s (%zu key frames, %zu poses)\n", o->save_map.c_str(), map.key_frames.size(),
                   map.poses.size());
     }
-    print_summary(result);
+    print_summary(result, reader->summary().start_t_ns);
     if (!config.load_map.empty() && !result.loop->relocalized_t_ns) {
       std::printf("not re-localized in %s: every pose is in the run's own frame\n", config.load_map.c_str());
     }

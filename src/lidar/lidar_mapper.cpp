@@ -1,6 +1,8 @@
 #include "lidar/lidar_mapper.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 
 #include "common/error.h"
@@ -122,7 +124,13 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
     out.rms_residual_m = r.rms_residual_m;
     out.matched_fraction = r.matched_fraction;
     out.inlier_fraction = r.inlier_fraction;
+    out.gap_s = std::max(0.0, ns_to_s(scan.t_ns - previous_->end_t_ns));
+    out.converged = r.converged;
+    const SE3 correction = (previous_->T_W_L * T_trans).inverse() * out.T_W_L;
+    out.correction_m = correction.translation().norm();
+    out.correction_deg = so3::log(correction.rotation()).norm() * 180.0 / M_PI;
   }
+  out.vio_prior = has_prior;
   out.num_edge_features = static_cast<int>(features.edges.size());
   out.num_surface_features = static_cast<int>(features.surfaces.size());
   map_.insert(features, out.T_W_L);

@@ -41,6 +41,14 @@ struct LidarMappingResult {
   double time_ms = 0.0;                // wall time of process(), for reporting only
   int num_edge_features = 0;           // extracted from the sweep
   int num_surface_features = 0;
+  // For the sweep's status (lidar/mapping_status.h): seconds with no sweep before this one (missing sweeps),
+  // whether a VIO prior gave the motion, whether the registration converged, and how far it moved the pose
+  // from the motion's prediction L_k T_trans (a jump the prior contradicts).
+  double gap_s = 0.0;
+  bool vio_prior = false;
+  bool converged = true;
+  double correction_m = 0.0;
+  double correction_deg = 0.0;
 };
 
 class LidarMapper {

@@ -9,6 +9,7 @@
 #include "io/trajectory_io.h"
 #include "loop/loop_constraints_io.h"
 #include "pipeline/run_config.h"
+#include "pipeline/run_status.h"
 #include "pipeline/timing_stats.h"
 
 namespace vilslam {
@@ -209,6 +210,7 @@ void write_run_outputs(const std::string& out_dir, const OfflineRunConfig& confi
   if (mode != RunMode::kLidarOnly) {
     write_trajectory((partial / "vio_camera.tum").string(), result.camera_states, TrajectoryFormat::kTum);
     write_trajectory((partial / "vio_imu.tum").string(), result.imu_poses, TrajectoryFormat::kTum);
+    write_file_atomic((partial / "vio_status.csv").string(), vio_status_csv(result.vio_status));
     if (result.realtime) {
       write_trajectory((partial / "vio_imu_live.tum").string(), result.realtime->live_imu_poses, TrajectoryFormat::kTum);
     }
@@ -239,6 +241,7 @@ void write_run_outputs(const std::string& out_dir, const OfflineRunConfig& confi
       write_trajectory((partial / "lidar.tum").string(), T_W_L, TrajectoryFormat::kTum);
     }
     write_file_atomic((partial / "degeneracy.csv").string(), degeneracy_csv(result.lidar));
+    write_file_atomic((partial / "lidar_status.csv").string(), lidar_status_csv(result.lidar));
   }
   const std::vector<TimingSeries> series = timing_series(result);
   write_file_atomic((partial / "timings.json").string(), timings_json(mode, result, series));

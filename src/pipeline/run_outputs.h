@@ -1,6 +1,6 @@
 #pragma once
-// Writes an offline run's results into an output folder: vio_camera.tum and vio_imu.tum (vio, vil),
-// lidar.tum and degeneracy.csv (vil, lidar-only), with loop closure (vil) lidar_global.tum,
+// Writes an offline run's results into an output folder: vio_camera.tum, vio_imu.tum and vio_status.csv (vio,
+// vil), lidar.tum, degeneracy.csv and lidar_status.csv (vil, lidar-only; pipeline/run_status.h), with loop closure (vil) lidar_global.tum,
 // lidar_final.tum, loops.csv and loop_candidates.csv, timings.json and timing_samples.csv (the samples it
 // summarizes), and config.yaml (the effective run config, pipeline/run_config.h: `vilslam run --config
 // DIR/config.yaml` repeats the run).

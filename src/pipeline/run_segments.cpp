@@ -64,6 +64,7 @@ bool join_map(loop::SavedMap& map, const LoopClosureOutput& run) {
 void append_segment(OfflineRunResult& run, OfflineRunResult&& segment, TimeNs start_t_ns) {
   run.segments.push_back(segment_entry(segment, start_t_ns));
   append(run.camera_states, std::move(segment.camera_states));
+  append(run.vio_status, std::move(segment.vio_status));
   append(run.imu_poses, std::move(segment.imu_poses));
   append(run.imu_motion, std::move(segment.imu_motion));
   append(run.matches_per_frame, std::move(segment.matches_per_frame));

@@ -14,6 +14,7 @@
 #include "pipeline/realtime.h"
 #include "vio/time_offset.h"
 #include "vio/vio.h"
+#include "vio/vio_status.h"
 
 namespace vilslam {
 
@@ -83,6 +84,7 @@ struct RunSegment {
 
 struct OfflineRunResult {
   Trajectory camera_states;  // T_W_I of every optimized stereo-frame state (IMU clock)
+  std::vector<VioStatusRecord> vio_status;  // what each of those states went through (vio_status.csv)
   Trajectory imu_poses;      // T_W_I propagated at every IMU sample after initialization
   Trajectory imu_motion;     // T_O_I at the same samples: the same motion without re-anchoring jumps
   std::vector<int> matches_per_frame;

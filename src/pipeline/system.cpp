@@ -135,9 +135,11 @@ class SmootherSide {
  public:
   SmootherSide(const RigCalibration& calib, const OfflineRunConfig& config, OfflineRunResult* result,
                Stage<LidarMessage>* lidar, Shared* shared)
-      : vio_(calib, config.vio), result_(result), lidar_(lidar), shared_(shared) {
+      : vio_(calib, config.vio), max_imu_step_ns_(s_to_ns(config.vio.imu_gap.max_step_s)), result_(result),
+        lidar_(lidar), shared_(shared) {
     vio_.on_state([this](const VioStateOutput& s) {
       result_->camera_states.push_back({s.state.t_ns, s.state.T_W_I()});
+      result_->vio_status.push_back(vio_status(s));
       if (shared_->callbacks.camera_state) shared_->callbacks.camera_state(result_->camera_states.back());
       if (shared_->live) shared_->live->anchor(s.state);
     });
@@ -149,8 +151,13 @@ class SmootherSide {
 
   void handle(VioMessage&& message) {
     if (auto* sample = std::get_if<ImuSample>(&message)) {
+      // After an IMU gap the sample goes in first: the frames it releases then interpolate across the gap (their
+      // IMU factors carry ImuGapModel's noise) instead of holding the last sample before it.
+      const bool after_gap = last_imu_t_ns_ && sample->t_ns - *last_imu_t_ns_ > max_imu_step_ns_;
+      last_imu_t_ns_ = sample->t_ns;
+      if (after_gap) vio_.add_imu(*sample);
       release_frames_before(sample->t_ns);
-      vio_.add_imu(*sample);
+      if (!after_gap) vio_.add_imu(*sample);
       ++result_->imu_samples;
       if (lidar_) lidar_->push(new_poses());
     } else if (auto* tracked = std::get_if<TrackedFrame>(&message)) {
@@ -186,6 +193,8 @@ class SmootherSide {
   }
 
   Vio vio_;
+  TimeNs max_imu_step_ns_;
+  std::optional<TimeNs> last_imu_t_ns_;
   OfflineRunResult* result_;
   Stage<LidarMessage>* lidar_;
   Shared* shared_;

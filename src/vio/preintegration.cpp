@@ -85,12 +85,13 @@ ImuSample sample_at(const std::vector<ImuSample>& samples, TimeNs t_ns) {
 
 }  // namespace
 
-void integrate_samples(const std::vector<ImuSample>& samples, TimeNs t0_ns, TimeNs t1_ns, Preintegration& preint,
-                       const ImuGapModel& gap) {
+double integrate_samples(const std::vector<ImuSample>& samples, TimeNs t0_ns, TimeNs t1_ns, Preintegration& preint,
+                         const ImuGapModel& gap) {
   if (samples.empty()) throw std::invalid_argument("integrate_samples: no IMU samples");
   if (t1_ns < t0_ns) throw std::invalid_argument("integrate_samples: t1 before t0");
   // Step boundaries: t0, every sample time strictly inside (t0, t1), t1.
   TimeNs a = t0_ns;
+  double gap_s = 0;
   auto it = std::upper_bound(samples.begin(), samples.end(), t0_ns,
                              [](TimeNs t, const ImuSample& s) { return t < s.t_ns; });
   while (a < t1_ns) {
@@ -100,6 +101,7 @@ void integrate_samples(const std::vector<ImuSample>& samples, TimeNs t0_ns, Time
     const bool in_gap = it != samples.begin() && it != samples.end() &&
                         ns_to_s(it->t_ns - std::prev(it)->t_ns) > gap.max_step_s;
     if (in_gap) {
+      gap_s += ns_to_s(b - a);
       preint.integrate(mid.gyro_rad_s, mid.accel_m_s2, ns_to_s(b - a), gap.rate_sigma_rad_s, gap.accel_sigma_m_s2);
     } else {
       preint.integrate(mid.gyro_rad_s, mid.accel_m_s2, ns_to_s(b - a));
@@ -107,6 +109,7 @@ void integrate_samples(const std::vector<ImuSample>& samples, TimeNs t0_ns, Time
     a = b;
     if (it != samples.end()) ++it;
   }
+  return gap_s;
 }
 
 }  // namespace vilslam

@@ -65,9 +65,10 @@ class Preintegration {
 // Integrates the samples over [t0_ns, t1_ns]. The signal is taken as piecewise linear between samples;
 // each Euler step spans the overlap of [t0, t1] with one sample interval and uses the interpolated
 // measurement at the step's midpoint. Outside the samples' span the nearest sample is held. A step inside a
-// sample interval longer than gap.max_step_s carries gap's held-measurement noise.
+// sample interval longer than gap.max_step_s carries gap's held-measurement noise. Returns the seconds of
+// [t0, t1] that lay in such gaps.
 // Throws std::invalid_argument when samples is empty or t1_ns < t0_ns.
-void integrate_samples(const std::vector<ImuSample>& samples, TimeNs t0_ns, TimeNs t1_ns, Preintegration& preint,
+double integrate_samples(const std::vector<ImuSample>& samples, TimeNs t0_ns, TimeNs t1_ns, Preintegration& preint,
                        const ImuGapModel& gap = {});
 
 }  // namespace vilslam

@@ -52,6 +52,7 @@ void Vio::add_frame(const FrontendOutput& frame) {
   }
   std::optional<TimeNs> join_t_ns;  // where the old and the new propagation are joined in O
   std::optional<SE3> T_W_I_old;
+  double imu_gap_s = 0;
   if (!initialized()) {
     const Initialization init = static_initialization(imu_, frame.t_ns, config_.initializer);
     Vec15 sigma;
@@ -64,7 +65,7 @@ void Vio::add_frame(const FrontendOutput& frame) {
     T_W_I_old = propagator_.state_at(*join_t_ns).T_W_I();
     const NavState& x = smoother_.newest();
     Preintegration preint(x.bias_gyro_rad_s, x.bias_accel_m_s2, calib_.imu);
-    integrate_samples(imu_, x.t_ns, frame.t_ns, preint, config_.imu_gap);
+    imu_gap_s = integrate_samples(imu_, x.t_ns, frame.t_ns, preint, config_.imu_gap);
     smoother_.add_frame(preint, frame);
   }
   // Keep the samples from the last one at or before the newest state on.
@@ -77,7 +78,7 @@ void Vio::add_frame(const FrontendOutput& frame) {
     // O stays continuous: the new propagation at the join time maps to where the old one was.
     T_O_W_ = T_O_W_ * *T_W_I_old * propagator_.state_at(*join_t_ns).T_W_I().inverse();
   }
-  publish_state();
+  publish_state(frame, imu_gap_s);
 }
 
 void Vio::initialize_moving(const FrontendOutput& frame) {
@@ -104,12 +105,13 @@ void Vio::initialize_moving(const FrontendOutput& frame) {
   smoother_.initialize(*a.state, sigma, window.front());
   alignment_frames_.clear();
   propagator_.reset(smoother_.newest(), imu_);
-  publish_state();
+  publish_state(window.front(), 0.0);
   for (std::size_t k = 1; k < window.size(); ++k) add_frame(window[k]);
 }
 
-void Vio::publish_state() {
-  latest_state_ = VioStateOutput{smoother_.newest(), smoother_.newest_covariance(), smoother_.stats().landmarks};
+void Vio::publish_state(const FrontendOutput& frame, double imu_gap_s) {
+  latest_state_ = VioStateOutput{smoother_.newest(), smoother_.newest_covariance(), smoother_.stats().landmarks,
+                                 static_cast<int>(frame.matches.size()), imu_gap_s};
   if (on_state_) on_state_(*latest_state_);
 }
 

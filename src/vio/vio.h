@@ -35,7 +35,9 @@ struct VioConfig {
 struct VioStateOutput {
   NavState state;
   Mat15 covariance;  // tangent ordering of window_state.h
-  int landmarks = 0;
+  int landmarks = 0;        // with a vision factor in the window's last solve
+  int frame_matches = 0;    // the frontend's stereo matches in this state's frame
+  double imu_gap_s = 0;     // of the interval from the previous state, seconds without IMU samples (ImuGapModel)
 };
 
 // Propagated state at an IMU sample. T_W_I jumps where a new optimized state re-anchors the propagation;
@@ -70,7 +72,7 @@ class Vio {
   const Smoother& smoother() const { return smoother_; }
 
  private:
-  void publish_state();
+  void publish_state(const FrontendOutput& frame, double imu_gap_s);
   // moving_start: collects the alignment window, initializes from it once it aligns.
   void initialize_moving(const FrontendOutput& frame);
 

@@ -1,0 +1,27 @@
+#include "vio/vio_status.h"
+
+namespace vilslam {
+
+VioStatusRecord vio_status(const VioStateOutput& state) {
+  VioStatusRecord r{state.state.t_ns, VioStatus::kTracking, state.frame_matches, state.landmarks, state.imu_gap_s};
+  if (state.imu_gap_s > 0) {
+    r.status = VioStatus::kImuGap;
+  } else if (state.frame_matches == 0) {
+    r.status = VioStatus::kInertialOnly;
+  } else if (state.frame_matches < kFewStereoMatches) {
+    r.status = VioStatus::kFewMatches;
+  }
+  return r;
+}
+
+std::string vio_status_name(VioStatus status) {
+  switch (status) {
+    case VioStatus::kTracking: return "tracking";
+    case VioStatus::kFewMatches: return "few_matches";
+    case VioStatus::kInertialOnly: return "inertial_only";
+    case VioStatus::kImuGap: return "imu_gap";
+  }
+  return {};
+}
+
+}  // namespace vilslam
