@@ -144,7 +144,7 @@ TEST_F(LoopClosureRun, OutputsAgree) {
 // Two threaded runs, and a run with every module on one thread: the same bytes.
 TEST_F(LoopClosureRun, RunsAreBitIdenticalThreadedOrNot) {
   for (const char* file : {"lidar.tum", "lidar_global.tum", "lidar_final.tum", "loops.csv", "loop_candidates.csv",
-                           "vio_camera.tum", "vio_imu.tum", "degeneracy.csv"}) {
+                           "vio_camera.tum", "vio_imu.tum", "degeneracy.csv", "vio_status.csv", "lidar_status.csv"}) {
     EXPECT_EQ(test::read_file_bytes(*runs_ / "a" / file), test::read_file_bytes(*runs_ / "b" / file)) << file;
     EXPECT_EQ(test::read_file_bytes(*runs_ / "a" / file), test::read_file_bytes(*runs_ / "serial" / file)) << file;
   }

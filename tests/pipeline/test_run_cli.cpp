@@ -51,8 +51,8 @@ double ate_rmse(const fs::path& est_path, const Trajectory& gt, eval::AlignMode 
   return report.ape.trans.rmse;
 }
 
-const std::vector<std::string> kVioFiles = {"vio_camera.tum", "vio_imu.tum"};
-const std::vector<std::string> kLidarFiles = {"lidar.tum", "degeneracy.csv"};
+const std::vector<std::string> kVioFiles = {"vio_camera.tum", "vio_imu.tum", "vio_status.csv"};
+const std::vector<std::string> kLidarFiles = {"lidar.tum", "degeneracy.csv", "lidar_status.csv"};
 
 TEST(RunCli, EurocSliceIsDeterministic) {
   VILSLAM_REQUIRE_SHARED_DATA(path, "euroc/V1_01_easy_micro");
