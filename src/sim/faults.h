@@ -17,6 +17,10 @@ struct FaultConfig {
   std::vector<FaultInterval> camera_blackouts;  // images are black (lens covered, lights out)
   std::vector<FaultInterval> lidar_dropouts;    // sweeps starting in the interval are missing
   std::vector<FaultInterval> imu_gaps;          // samples in the interval are missing
+  // Sudden exposure changes (a door to daylight, an auto-exposure overshoot): inside the interval the image
+  // brightness jumps to exposure_jump_gain times the usual, and back at its end.
+  std::vector<FaultInterval> exposure_jumps;
+  double exposure_jump_gain = 2.5;
   double camera_time_offset_s = 0;              // stamp = true capture time + offset
   double lidar_time_offset_s = 0;
 };

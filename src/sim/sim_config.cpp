@@ -152,11 +152,14 @@ void read_motion(const Reader& r, const YAML::Node& n, SimConfig& c) {
 }
 
 void read_faults(const Reader& r, const YAML::Node& n, SimConfig& c) {
-  r.check_keys(n, {"camera_blackouts", "lidar_dropouts", "imu_gaps", "camera_time_offset_s", "lidar_time_offset_s"},
+  r.check_keys(n, {"camera_blackouts", "lidar_dropouts", "imu_gaps", "exposure_jumps", "exposure_jump_gain",
+                   "camera_time_offset_s", "lidar_time_offset_s"},
                "faults");
   r.get_intervals(n, "camera_blackouts", c.faults.camera_blackouts);
   r.get_intervals(n, "lidar_dropouts", c.faults.lidar_dropouts);
   r.get_intervals(n, "imu_gaps", c.faults.imu_gaps);
+  r.get_intervals(n, "exposure_jumps", c.faults.exposure_jumps);
+  r.get(n, "exposure_jump_gain", c.faults.exposure_jump_gain);
   r.get(n, "camera_time_offset_s", c.faults.camera_time_offset_s);
   r.get(n, "lidar_time_offset_s", c.faults.lidar_time_offset_s);
 }
@@ -168,7 +171,7 @@ void validate(const Reader& r, const SimConfig& c) {
                   c.outdoor_speed_m_s > 0 && c.motion.ramp_s > 0 && c.outdoor_ramp_s > 0 &&
                   c.motion.control_spacing_m > 0 && c.outdoor_control_spacing_m > 0 &&
                   c.pose_spline.knot_spacing_s > 0 && c.render.motion_blur_samples >= 1 && c.preview_duration_s > 0 &&
-                  c.model_spacing_m > 0 && c.parallel_batch > 0;
+                  c.model_spacing_m > 0 && c.parallel_batch > 0 && c.faults.exposure_jump_gain > 0;
   if (!ok) r.fail("rates, sizes, speeds, spacings and counts must be positive");
   try {
     check_lidar_config(c.lidar);

@@ -180,6 +180,7 @@ void write_frames(const SimConfig& config, const SimulateRequest& request, const
         options.noise_seed = mix_seed(request.seed, 1 + cam, k);
         options.exposure_gain =
             1.0 + config.exposure_variation * std::sin(2 * kPi * ns_to_s(t_ns - imu.t0_ns) / config.exposure_period_s);
+        if (in_fault(config.faults.exposure_jumps, t_ns - imu.t0_ns)) options.exposure_gain *= config.faults.exposure_jump_gain;
         const auto T_W_C = [&](TimeNs t) { return scene.motion->pose(t) * T_I_C[cam]; };
         image = render_image(scene.world, *cams[cam], T_W_C, t_ns, options);
       }
