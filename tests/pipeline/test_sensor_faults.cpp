@@ -128,14 +128,19 @@ TEST_F(SensorFaults, EachModulesStatusSaysWhatHappenedAndWhen) {
 TEST_F(SensorFaults, PosesStayOnTheTruthThroughEveryFault) {
   ASSERT_NE(output_, nullptr);
   // Measured: LiDAR (loop closed) 0.024 m, VIO 0.032 m; the same lap without faults 0.025 / 0.010 m. Taken at
-  // face value, the gap's IMU factor sends both metres off (LiDAR 2.6 m).
+  // face value, the gap's IMU factor sends the VIO off and the LiDAR poses after it; how far depends on the
+  // build's rounding once the window diverges (gcc: LiDAR 2.6 m, VIO 3.1 m; clang's TSan build: 0.23 m and 1.2 m
+  // against 0.028 and 0.039 m with the model), so that side is bounded relative to the run with the model.
   const double lidar_m = ape_m("run", "lidar_final.tum", "lidar");
   const double vio_m = ape_m("run", "vio_camera.tum", "imu");
   const double face_lidar_m = ape_m("face_value", "lidar_final.tum", "lidar");
-  std::printf("SE(3) APE: LiDAR %.4f m, VIO %.4f m; gap at face value: LiDAR %.4f m\n", lidar_m, vio_m, face_lidar_m);
+  const double face_vio_m = ape_m("face_value", "vio_camera.tum", "imu");
+  std::printf("SE(3) APE: LiDAR %.4f m, VIO %.4f m; gap at face value: LiDAR %.4f m, VIO %.4f m\n", lidar_m, vio_m,
+              face_lidar_m, face_vio_m);
   EXPECT_LT(lidar_m, 0.05);  // twice the fault-free lap's
   EXPECT_LT(vio_m, 0.08);
-  EXPECT_GT(face_lidar_m, 0.5);
+  EXPECT_GT(face_lidar_m, 4.0 * lidar_m);
+  EXPECT_GT(face_vio_m, 4.0 * vio_m);
 }
 
 }  // namespace
