@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "common/json_writer.h"
+#include "common/publish_dir.h"
 #include "io/calibration_io.h"
 #include "io/euroc_calibration.h"
 #include "io/scan_file.h"
@@ -152,10 +153,7 @@ void DatasetWriter::finish() {
     write_file_atomic((m.mav0 / "lidar0" / "sensor.yaml").string(), euroc_lidar_yaml_text(c.lidar, c.T_I_L));
   }
   write_rig_yaml((m.partial / "rig.yaml").string(), c);
-  std::error_code ec;
-  if (m.overwrite) fs::remove_all(m.root, ec);
-  fs::rename(m.partial, m.root, ec);
-  if (ec) throw std::runtime_error("cannot move " + m.partial.string() + " to " + m.root.string() + ": " + ec.message());
+  publish_directory(m.partial.string(), m.root.string());
   m.finished = true;
 }
 

@@ -13,6 +13,7 @@
 #include "common/binary_io.h"
 #include "common/error.h"
 #include "common/json_writer.h"
+#include "common/publish_dir.h"
 #include "io/calibration_io.h"
 #include "io/trajectory_io.h"
 
@@ -215,8 +216,7 @@ void save_map(const std::string& dir, const SavedMap& map) {
   write_rig_yaml((partial / "rig.yaml").string(), map.rig);
   write_trajectory((partial / "poses.tum").string(), map.poses, TrajectoryFormat::kTum);
   write_file_atomic((partial / "key_frames.bin").string(), key_frames_bytes(map.key_frames));
-  fs::remove_all(dir);
-  fs::rename(partial, dir);
+  publish_directory(partial.string(), dir);
 }
 
 SavedMap load_map(const std::string& dir) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "common/json_writer.h"
+#include "common/publish_dir.h"
 #include "io/trajectory_io.h"
 #include "loop/loop_constraints_io.h"
 #include "pipeline/run_config.h"
@@ -248,8 +249,7 @@ void write_run_outputs(const std::string& out_dir, const OfflineRunConfig& confi
   write_file_atomic((partial / "timing_samples.csv").string(), timing_samples_csv(series));
   if (result.time_offset) write_file_atomic((partial / "time_offset.json").string(), time_offset_json(*result.time_offset));
   write_file_atomic((partial / "config.yaml").string(), run_config_yaml(config));
-  fs::remove_all(out);
-  fs::rename(partial, out);
+  publish_directory(partial.string(), out);
 }
 
 }  // namespace vilslam
