@@ -22,11 +22,26 @@ void LidarFeeder::scan(LidarScan scan) {
   poses_advanced();
 }
 
+void LidarFeeder::vio_lost() { lost_after_ = imu_poses_->size(); }
+
+void LidarFeeder::finish() {
+  poses_advanced();
+  if (!lost_after_) return;
+  for (; !waiting_.empty(); waiting_.pop_front()) map(waiting_.front(), {}, {});  // the VIO never started again
+}
+
 void LidarFeeder::poses_advanced() {
-  while (!waiting_.empty() && !imu_poses_->empty() && imu_poses_->back().t_ns >= waiting_.front().end_t_ns()) {
+  if (lost_after_ && imu_poses_->size() > *lost_after_) {
+    restarted_t_ns_ = (*imu_poses_)[*lost_after_].t_ns;
+    lost_after_.reset();
+  }
+  while (!lost_after_ && !waiting_.empty() && !imu_poses_->empty() &&
+         imu_poses_->back().t_ns >= waiting_.front().end_t_ns()) {
     const LidarScan& scan = waiting_.front();
     if (scan.t_ns < imu_poses_->front().t_ns) {
       ++unmapped_;  // the VIO was not initialized yet at the sweep's start
+    } else if (restarted_t_ns_ && scan.t_ns < *restarted_t_ns_) {
+      map(scan, {}, {});  // the sweep began while the VIO was lost
     } else {
       std::function<SE3(TimeNs)> T_O_I;
       if (imu_motion_) T_O_I = [this](TimeNs t_ns) { return pose_at(*imu_motion_, t_ns); };

@@ -5,6 +5,7 @@
 // closure module every mapped sweep goes to it, and its map corrections go back to the mapper.
 #include <cstddef>
 #include <deque>
+#include <optional>
 #include <vector>
 
 #include "common/calibration.h"
@@ -26,6 +27,13 @@ class LidarFeeder {
   void scan(LidarScan scan);
   // Maps the waiting sweeps that the IMU-rate poses now cover.
   void poses_advanced();
+  // The VIO lost track after the poses so far (vio/vio.h VioLossEvent). Sweeps wait until its restarted window
+  // publishes poses (from the window's first frame on, once it aligned: about alignment.frames frames later);
+  // those that began before that window are then mapped from the LiDAR alone (constant velocity), the later ones
+  // with the new poses. The first sweep after a restart takes no motion across it (the mapper's prior is relative).
+  void vio_lost();
+  // At the end of the data: poses_advanced(), and a VIO lost for good leaves no sweep waiting (mapped LiDAR-only).
+  void finish();
   // Sweeps no VIO pose covers (before initialization or after the last pose) are left unmapped.
   std::size_t unmapped_scans() const { return unmapped_ + waiting_.size(); }
   // Sweeps still waiting for the VIO poses to reach their end.
@@ -47,6 +55,8 @@ class LidarFeeder {
   LoopClosureModule* loop_;
   std::deque<LidarScan> waiting_;
   std::size_t unmapped_ = 0;
+  std::optional<std::size_t> lost_after_;   // while the VIO is lost: the number of poses it published before
+  std::optional<TimeNs> restarted_t_ns_;    // the newest restarted window's first pose
 };
 
 }  // namespace vilslam

@@ -7,6 +7,13 @@ namespace vilslam {
 void LivePropagator::anchor(const NavState& newest) {
   const std::lock_guard<std::mutex> lock(mutex_);
   new_anchor_ = newest;
+  lost_ = false;
+}
+
+void LivePropagator::lost() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  new_anchor_.reset();
+  lost_ = true;
 }
 
 std::optional<SE3> LivePropagator::add(const ImuSample& sample) {
@@ -14,6 +21,8 @@ std::optional<SE3> LivePropagator::add(const ImuSample& sample) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     std::swap(anchor, new_anchor_);
+    if (lost_) anchor_t_ns_.reset();
+    lost_ = false;
   }
   samples_.push_back(sample);
   if (anchor) {

@@ -18,12 +18,15 @@ class LivePropagator {
 
   // From the smoother's thread: a new optimized state; the next sample re-anchors on it.
   void anchor(const NavState& newest);
+  // From the smoother's thread: the VIO lost track; no pose is published until the next anchor.
+  void lost();
   // From the reader's thread, in time order: the pose T_W_I at the sample, once a state is anchored before it.
   std::optional<SE3> add(const ImuSample& sample);
 
  private:
   std::mutex mutex_;
   std::optional<NavState> new_anchor_;  // handed over, not yet applied
+  bool lost_ = false;                   // handed over, not yet applied
 
   Propagator propagator_;               // the reader's thread only, from here on
   std::optional<TimeNs> anchor_t_ns_;

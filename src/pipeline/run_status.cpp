@@ -11,7 +11,7 @@ std::string vio_status_csv(const std::vector<VioStatusRecord>& states) {
   std::ostringstream out;
   out << std::setprecision(17) << "t_ns,status,frame_matches,landmarks,imu_gap_s\n";
   for (const VioStatusRecord& s : states) {
-    out << s.t_ns << ',' << vio_status_name(s.status) << ',' << s.frame_matches << ',' << s.landmarks << ','
+    out << s.t_ns << ',' << vio_status_name(s) << ',' << s.frame_matches << ',' << s.landmarks << ','
         << s.imu_gap_s << '\n';
   }
   return out.str();
@@ -51,7 +51,7 @@ std::vector<StatusStretch> status_stretches(const OfflineRunResult& run, double 
   std::vector<StatusStretch> stretches;
   for (const VioStatusRecord& s : run.vio_status) {
     if (s.status == VioStatus::kTracking) continue;
-    add_record(stretches, "vio", vio_status_name(s.status), s.t_ns, s.imu_gap_s, join_s);
+    add_record(stretches, "vio", vio_status_name(s), s.t_ns, s.imu_gap_s, join_s);
   }
   for (const lidar::LidarMappingResult& m : run.lidar) {
     const lidar::MappingStatus status = lidar::mapping_status(m);

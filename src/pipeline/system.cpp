@@ -28,7 +28,9 @@ struct PosesAdvanced {
   Trajectory imu_poses;   // T_W_I
   Trajectory imu_motion;  // T_O_I at the same samples
 };
-using LidarMessage = std::variant<PosesAdvanced, StereoFrame, LidarScan>;
+// The VIO lost track after the poses sent so far (vio/vio.h VioLossEvent).
+struct VioLost {};
+using LidarMessage = std::variant<PosesAdvanced, VioLost, StereoFrame, LidarScan>;
 
 // A stereo pair on the IMU clock with its frontend output.
 struct TrackedFrame {
@@ -75,6 +77,8 @@ class LidarSide {
       imu_poses_.insert(imu_poses_.end(), poses->imu_poses.begin(), poses->imu_poses.end());
       imu_motion_.insert(imu_motion_.end(), poses->imu_motion.begin(), poses->imu_motion.end());
       lidar_->poses_advanced();
+    } else if (std::holds_alternative<VioLost>(message)) {
+      lidar_->vio_lost();
     } else if (auto* frame = std::get_if<StereoFrame>(&message)) {
       if (loop_) loop_->stereo(*frame);
     } else {
@@ -84,7 +88,7 @@ class LidarSide {
   }
 
   void finish() {
-    lidar_->poses_advanced();
+    lidar_->finish();
     publish();
     result_->unmapped_scans = lidar_->unmapped_scans();
     if (loop_) result_->loop = loop_->finish();
@@ -142,6 +146,14 @@ class SmootherSide {
       result_->vio_status.push_back(vio_status(s));
       if (shared_->callbacks.camera_state) shared_->callbacks.camera_state(result_->camera_states.back());
       if (shared_->live) shared_->live->anchor(s.state);
+    });
+    vio_.on_lost([this](const VioLossEvent& e) {
+      result_->vio_status.push_back(vio_status(e));
+      if (shared_->live) shared_->live->lost();
+      if (lidar_) {
+        lidar_->push(new_poses());
+        lidar_->push(VioLost{});
+      }
     });
     vio_.on_imu_pose([this](const VioImuOutput& p) {
       result_->imu_poses.push_back({p.t_ns, p.T_W_I});

@@ -39,15 +39,19 @@ Smoother::Smoother(const SmootherConfig& config, const StereoExtrinsics& extrins
 }
 
 void Smoother::initialize(const NavState& x0, const Vec15& prior_sigma, const FrontendOutput& frame) {
-  window_.clear();
-  tracks_.clear();
-  rejected_tracks_.clear();
-  stats_ = {};
+  reset();
   const std::uint64_t id = next_id_++;
   window_.push_back({id, x0, std::nullopt});
   prior_ = diagonal_prior(id, x0, prior_sigma);
   newest_covariance_ = prior_sigma.cwiseAbs2().asDiagonal();
   add_observations(id, frame);
+}
+
+void Smoother::reset() {
+  window_.clear();
+  tracks_.clear();
+  rejected_tracks_.clear();
+  stats_ = {};
 }
 
 void Smoother::add_frame(const Preintegration& preint, const FrontendOutput& frame) {

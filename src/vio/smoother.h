@@ -49,6 +49,8 @@ class Smoother {
   void optimize();
 
   bool initialized() const { return !window_.empty(); }
+  // Drops the window, its landmarks and its prior (the VIO lost track); initialize() starts again.
+  void reset();
   const NavState& newest() const { return window_.back().x; }
   // Covariance of the newest state: its 15x15 block of the inverse of the window's H after the solve.
   const Mat15& newest_covariance() const { return newest_covariance_; }

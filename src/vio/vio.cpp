@@ -25,7 +25,8 @@ Vio::Vio(const RigCalibration& calib, const VioConfig& config)
     : config_(config),
       calib_(calib),
       smoother_(config.smoother, {calib.T_I_C0, calib.T_I_C1}, calib.imu, checked_focal_px(calib)),
-      propagator_(calib.imu, Vec3(0, 0, -config.smoother.gravity_m_s2)) {}
+      propagator_(calib.imu, Vec3(0, 0, -config.smoother.gravity_m_s2)),
+      loss_check_(config.loss) {}
 
 void Vio::add_imu(const ImuSample& sample) {
   if (!sample.gyro_rad_s.allFinite() || !sample.accel_m_s2.allFinite()) {
@@ -46,39 +47,46 @@ void Vio::add_frame(const FrontendOutput& frame) {
     throw InputError(kSource, "frame at t_ns " + std::to_string(frame.t_ns) + " is not after the previous one");
   }
   if (imu_.empty() || imu_.front().t_ns > frame.t_ns) return;
-  if (!initialized() && config_.initializer.moving_start) {
+  if (!initialized()) {
+    start(frame);
+    return;
+  }
+  const TimeNs join_t_ns = std::max(propagator_.current().t_ns, frame.t_ns);  // old and new propagation joined in O
+  const SE3 T_W_I_old = propagator_.state_at(join_t_ns).T_W_I();
+  const NavState& x = smoother_.newest();
+  Preintegration preint(x.bias_gyro_rad_s, x.bias_accel_m_s2, calib_.imu);
+  const double imu_gap_s = integrate_samples(imu_, x.t_ns, frame.t_ns, preint, config_.imu_gap);
+  smoother_.add_frame(preint, frame);
+  const VioLoss loss = loss_check_.check(smoother_.newest(), smoother_.newest_covariance(),
+                                         static_cast<int>(frame.matches.size()), smoother_.stats().landmarks,
+                                         smoother_.stats().final_cost);
+  if (loss != VioLoss::kNone) {
+    declare_lost(frame, loss);
+    return;
+  }
+  keep_imu_from(smoother_.newest().t_ns);
+  propagator_.reset(smoother_.newest(), imu_);
+  // O stays continuous: the new propagation at the join time maps to where the old one was.
+  T_O_W_ = T_O_W_ * T_W_I_old * propagator_.state_at(join_t_ns).T_W_I().inverse();
+  publish_state(frame, imu_gap_s);
+}
+
+void Vio::start(const FrontendOutput& frame) {
+  // A moving start and a restart align (a rig at constant velocity looks static to the IMU alone).
+  if (config_.initializer.moving_start || restarting_ || !alignment_frames_.empty()) {
     initialize_moving(frame);
     return;
   }
-  std::optional<TimeNs> join_t_ns;  // where the old and the new propagation are joined in O
-  std::optional<SE3> T_W_I_old;
-  double imu_gap_s = 0;
-  if (!initialized()) {
-    const Initialization init = static_initialization(imu_, frame.t_ns, config_.initializer);
-    Vec15 sigma;
-    sigma << Vec3::Constant(init.is_static ? config_.prior_rotation_sigma_rad : config_.moving_rotation_sigma_rad), Vec3::Constant(config_.prior_position_sigma_m),
-        Vec3::Constant(init.is_static ? config_.prior_velocity_sigma_m_s : config_.moving_velocity_sigma_m_s),
-        Vec3::Constant(config_.prior_gyro_bias_sigma_rad_s), Vec3::Constant(config_.prior_accel_bias_sigma_m_s2);
-    smoother_.initialize(init.state, sigma, frame);
-  } else {
-    join_t_ns = std::max(propagator_.current().t_ns, frame.t_ns);
-    T_W_I_old = propagator_.state_at(*join_t_ns).T_W_I();
-    const NavState& x = smoother_.newest();
-    Preintegration preint(x.bias_gyro_rad_s, x.bias_accel_m_s2, calib_.imu);
-    imu_gap_s = integrate_samples(imu_, x.t_ns, frame.t_ns, preint, config_.imu_gap);
-    smoother_.add_frame(preint, frame);
-  }
-  // Keep the samples from the last one at or before the newest state on.
-  const TimeNs t_ns = smoother_.newest().t_ns;
-  const auto first_after = std::upper_bound(imu_.begin(), imu_.end(), t_ns,
-                                            [](TimeNs t, const ImuSample& s) { return t < s.t_ns; });
-  imu_.erase(imu_.begin(), first_after == imu_.begin() ? first_after : first_after - 1);
+  const Initialization init = static_initialization(imu_, frame.t_ns, config_.initializer);
+  Vec15 sigma;
+  sigma << Vec3::Constant(init.is_static ? config_.prior_rotation_sigma_rad : config_.moving_rotation_sigma_rad),
+      Vec3::Constant(config_.prior_position_sigma_m),
+      Vec3::Constant(init.is_static ? config_.prior_velocity_sigma_m_s : config_.moving_velocity_sigma_m_s),
+      Vec3::Constant(config_.prior_gyro_bias_sigma_rad_s), Vec3::Constant(config_.prior_accel_bias_sigma_m_s2);
+  begin_window(init.state, sigma, frame);
+  keep_imu_from(smoother_.newest().t_ns);
   propagator_.reset(smoother_.newest(), imu_);
-  if (T_W_I_old) {
-    // O stays continuous: the new propagation at the join time maps to where the old one was.
-    T_O_W_ = T_O_W_ * *T_W_I_old * propagator_.state_at(*join_t_ns).T_W_I().inverse();
-  }
-  publish_state(frame, imu_gap_s);
+  publish_state(frame, 0.0);
 }
 
 void Vio::initialize_moving(const FrontendOutput& frame) {
@@ -92,26 +100,79 @@ void Vio::initialize_moving(const FrontendOutput& frame) {
                                                           config_.smoother.gravity_m_s2, config_.initializer.alignment);
   if (!a.state) {
     alignment_frames_.pop_front();
-    // Keep the samples from the last one at or before the window's first frame on.
-    const auto first_after = std::upper_bound(imu_.begin(), imu_.end(), alignment_frames_.front().t_ns,
-                                              [](TimeNs t, const ImuSample& s) { return t < s.t_ns; });
-    if (first_after != imu_.begin()) imu_.erase(imu_.begin(), first_after - 1);
+    keep_imu_from(alignment_frames_.front().t_ns);
     return;
   }
   Vec15 sigma;
   sigma << Vec3::Constant(config_.prior_rotation_sigma_rad), Vec3::Constant(config_.prior_position_sigma_m),
       Vec3::Constant(config_.moving_velocity_sigma_m_s), Vec3::Constant(config_.prior_gyro_bias_sigma_rad_s),
       Vec3::Constant(config_.prior_accel_bias_sigma_m_s2);
-  smoother_.initialize(*a.state, sigma, window.front());
   alignment_frames_.clear();
+  // After a loss the LiDAR side maps without the VIO until its poses resume: they resume at the window's start.
+  const bool backfill = restarting_;
+  const std::vector<ImuSample> samples = imu_;
+  begin_window(*a.state, sigma, window.front());
   propagator_.reset(smoother_.newest(), imu_);
   publish_state(window.front(), 0.0);
-  for (std::size_t k = 1; k < window.size(); ++k) add_frame(window[k]);
+  for (std::size_t k = 1; k < window.size(); ++k) {
+    if (backfill) publish_imu_poses(samples, window[k].t_ns);
+    add_frame(window[k]);
+  }
+}
+
+void Vio::publish_imu_poses(const std::vector<ImuSample>& samples, TimeNs t_ns) {
+  // As they would have been published live: propagated from the newest state, sample by sample.
+  const NavState& x = smoother_.newest();
+  const auto first_after = std::upper_bound(samples.begin(), samples.end(), x.t_ns,
+                                            [](TimeNs t, const ImuSample& s) { return t < s.t_ns; });
+  Propagator propagator(calib_.imu, smoother_.gravity_W());
+  propagator.reset(x, std::vector<ImuSample>(samples.begin(), first_after));
+  for (auto it = first_after; it != samples.end() && it->t_ns <= t_ns; ++it) {
+    const NavState y = propagator.add(*it);
+    latest_imu_ = VioImuOutput{y.t_ns, y.T_W_I(), y.v_W_m_s, T_O_W_ * y.T_W_I()};
+    if (on_imu_) on_imu_(*latest_imu_);
+  }
+}
+
+void Vio::begin_window(const NavState& x0, const Vec15& prior_sigma, const FrontendOutput& frame) {
+  NavState x = x0;
+  if (restarting_ && latest_state_) {
+    // Yaw and position are a gauge the restarted window cannot observe: it continues from the last published
+    // state, moved on at the aligned velocity (the lost window's own is not trusted), so the output does not jump
+    // (the error that state had stays).
+    const NavState& last = latest_state_->state;
+    const auto yaw = [](const Mat3& R) { return std::atan2(R(1, 0), R(0, 0)); };
+    const Mat3 R_shift = Eigen::AngleAxisd(yaw(last.R_W_I) - yaw(x0.R_W_I), Vec3::UnitZ()).toRotationMatrix();
+    x.R_W_I = R_shift * x0.R_W_I;
+    x.v_W_m_s = R_shift * x0.v_W_m_s;
+    x.p_W_I = last.p_W_I + x.v_W_m_s * ns_to_s(x0.t_ns - last.t_ns);
+  }
+  smoother_.initialize(x, prior_sigma, frame);
+  if (restarting_ && latest_imu_) T_O_W_ = latest_imu_->T_O_I * x.T_W_I().inverse();  // O continues where it was
+  restarted_ = restarting_;
+  restarting_ = false;
+  loss_check_.reset();
+}
+
+void Vio::declare_lost(const FrontendOutput& frame, VioLoss reason) {
+  const VioLossEvent event{frame.t_ns, reason, static_cast<int>(frame.matches.size()), smoother_.stats().landmarks};
+  smoother_.reset();
+  loss_check_.reset();
+  restarting_ = true;
+  keep_imu_from(frame.t_ns);
+  if (on_lost_) on_lost_(event);
+}
+
+void Vio::keep_imu_from(TimeNs t_ns) {
+  const auto first_after =
+      std::upper_bound(imu_.begin(), imu_.end(), t_ns, [](TimeNs t, const ImuSample& s) { return t < s.t_ns; });
+  if (first_after != imu_.begin()) imu_.erase(imu_.begin(), first_after - 1);
 }
 
 void Vio::publish_state(const FrontendOutput& frame, double imu_gap_s) {
   latest_state_ = VioStateOutput{smoother_.newest(), smoother_.newest_covariance(), smoother_.stats().landmarks,
-                                 static_cast<int>(frame.matches.size()), imu_gap_s};
+                                 static_cast<int>(frame.matches.size()), imu_gap_s, restarted_};
+  restarted_ = false;
   if (on_state_) on_state_(*latest_state_);
 }
 

@@ -10,6 +10,7 @@
 #include "common/types.h"
 #include "frontend/stereo_match.h"
 #include "vio/initializer.h"
+#include "vio/loss_check.h"
 #include "vio/propagator.h"
 #include "vio/smoother.h"
 
@@ -19,6 +20,7 @@ struct VioConfig {
   SmootherConfig smoother;
   InitializerConfig initializer;
   ImuGapModel imu_gap;  // samples missing: the IMU factor across them is weakened (vio/preintegration.h)
+  VioLossConfig loss;   // when the VIO declares itself lost and starts again (vio/loss_check.h)
   // Standard deviations of the first state's prior: rotation (rad), position (m), velocity (m/s),
   // gyro bias (rad/s), accel bias (m/s^2). Yaw and position are a gauge choice; a moving start gets
   // wider rotation and velocity priors (the averaged specific force then includes the acceleration).
@@ -38,6 +40,17 @@ struct VioStateOutput {
   int landmarks = 0;        // with a vision factor in the window's last solve
   int frame_matches = 0;    // the frontend's stereo matches in this state's frame
   double imu_gap_s = 0;     // of the interval from the previous state, seconds without IMU samples (ImuGapModel)
+  bool restarted = false;   // the first state of a window started again after a loss (VioLossEvent)
+};
+
+// The VIO lost track at a frame (vio/loss_check.h): that frame's state was not published, the window was dropped,
+// and no state or IMU-rate pose follows until it has initialized again by visual-inertial alignment, continuing in
+// yaw and position from the last published state.
+struct VioLossEvent {
+  TimeNs t_ns = 0;
+  VioLoss reason = VioLoss::kNone;
+  int frame_matches = 0;
+  int landmarks = 0;
 };
 
 // Propagated state at an IMU sample. T_W_I jumps where a new optimized state re-anchors the propagation;
@@ -65,6 +78,7 @@ class Vio {
 
   void on_state(std::function<void(const VioStateOutput&)> callback) { on_state_ = std::move(callback); }
   void on_imu_pose(std::function<void(const VioImuOutput&)> callback) { on_imu_ = std::move(callback); }
+  void on_lost(std::function<void(const VioLossEvent&)> callback) { on_lost_ = std::move(callback); }
 
   bool initialized() const { return smoother_.initialized(); }
   const std::optional<VioStateOutput>& latest_state() const { return latest_state_; }
@@ -73,8 +87,17 @@ class Vio {
 
  private:
   void publish_state(const FrontendOutput& frame, double imu_gap_s);
-  // moving_start: collects the alignment window, initializes from it once it aligns.
+  // The first frame, or the first after a loss: a static start, or the alignment window when moving.
+  void start(const FrontendOutput& frame);
+  // moving_start (or a restart while moving): collects the alignment window, initializes from it once it aligns.
   void initialize_moving(const FrontendOutput& frame);
+  // Starts the smoother's window at x0; after a loss, continues from the last published state's yaw and position.
+  void begin_window(const NavState& x0, const Vec15& prior_sigma, const FrontendOutput& frame);
+  void declare_lost(const FrontendOutput& frame, VioLoss reason);
+  // The IMU-rate poses of samples after the newest state up to t_ns (a restarted window's, once it aligned).
+  void publish_imu_poses(const std::vector<ImuSample>& samples, TimeNs t_ns);
+  // Keeps the samples from the last one at or before t_ns on.
+  void keep_imu_from(TimeNs t_ns);
 
   VioConfig config_;
   RigCalibration calib_;
@@ -82,11 +105,15 @@ class Vio {
   Propagator propagator_;
   std::vector<ImuSample> imu_;  // samples from just before the newest state on
   std::deque<FrontendOutput> alignment_frames_;  // moving_start: the window not yet aligned
+  VioLossCheck loss_check_;
+  bool restarting_ = false;  // lost: the next window continues from the last published state
+  bool restarted_ = false;   // the next published state is a restarted window's first
   std::optional<VioStateOutput> latest_state_;
   std::optional<VioImuOutput> latest_imu_;
   SE3 T_O_W_;  // the jump-free frame O of VioImuOutput::T_O_I
   std::function<void(const VioStateOutput&)> on_state_;
   std::function<void(const VioImuOutput&)> on_imu_;
+  std::function<void(const VioLossEvent&)> on_lost_;
 };
 
 }  // namespace vilslam

@@ -9,6 +9,7 @@ YamlFields vio_yaml_fields(VioConfig& c) {
   LmConfig& lm = s.lm;
   InitializerConfig& i = c.initializer;
   ImuGapModel& g = c.imu_gap;
+  VioLossConfig& l = c.loss;
   return {
       yaml_section("smoother",
                    {yaml_value("window_size", s.window_size), yaml_value("pixel_sigma_px", s.pixel_sigma_px),
@@ -29,6 +30,14 @@ YamlFields vio_yaml_fields(VioConfig& c) {
                                                  yaml_value("max_gravity_error_m_s2", i.alignment.max_gravity_error_m_s2)})}),
       yaml_section("imu_gap", {yaml_value("max_step_s", g.max_step_s), yaml_value("rate_sigma_rad_s", g.rate_sigma_rad_s),
                                yaml_value("accel_sigma_m_s2", g.accel_sigma_m_s2)}),
+      yaml_section("loss", {yaml_value("enabled", l.enabled), yaml_value("max_speed_m_s", l.max_speed_m_s),
+                            yaml_value("max_gyro_bias_rad_s", l.max_gyro_bias_rad_s),
+                            yaml_value("max_accel_bias_m_s2", l.max_accel_bias_m_s2),
+                            yaml_value("min_frame_matches", l.min_frame_matches),
+                            yaml_value("min_landmark_share", l.min_landmark_share),
+                            yaml_value("max_cost_per_landmark", l.max_cost_per_landmark),
+                            yaml_value("recent_states", l.recent_states),
+                            yaml_value("inconsistent_states", l.inconsistent_states)}),
       yaml_value("prior_rotation_sigma_rad", c.prior_rotation_sigma_rad),
       yaml_value("moving_rotation_sigma_rad", c.moving_rotation_sigma_rad),
       yaml_value("prior_position_sigma_m", c.prior_position_sigma_m),
@@ -63,6 +72,14 @@ void validate_vio_config(const VioConfig& c, const std::string& source) {
   require(c.imu_gap.max_step_s > 0, "imu_gap.max_step_s must be > 0");
   require(c.imu_gap.rate_sigma_rad_s >= 0 && c.imu_gap.accel_sigma_m_s2 >= 0,
           "imu_gap.rate_sigma_rad_s and imu_gap.accel_sigma_m_s2 must be >= 0");
+  const VioLossConfig& l = c.loss;
+  require(l.max_speed_m_s > 0 && l.max_gyro_bias_rad_s > 0 && l.max_accel_bias_m_s2 > 0,
+          "loss.max_speed_m_s, loss.max_gyro_bias_rad_s and loss.max_accel_bias_m_s2 must be > 0");
+  require(l.min_frame_matches >= 1, "loss.min_frame_matches must be >= 1");
+  require(l.min_landmark_share >= 0 && l.min_landmark_share <= 1, "loss.min_landmark_share must be in [0, 1]");
+  require(l.max_cost_per_landmark > 0, "loss.max_cost_per_landmark must be > 0");
+  require(l.inconsistent_states >= 1 && l.inconsistent_states <= l.recent_states,
+          "loss.inconsistent_states must be in [1, loss.recent_states]");
   require(c.prior_rotation_sigma_rad > 0 && c.moving_rotation_sigma_rad > 0,
           "prior_rotation_sigma_rad and moving_rotation_sigma_rad must be > 0");
   require(c.prior_position_sigma_m > 0, "prior_position_sigma_m must be > 0");

@@ -13,6 +13,8 @@ enum class VioStatus {
   kFewMatches,    // fewer than few_matches: vision constrains the state weakly (blur, bare walls)
   kInertialOnly,  // no match at all (camera blacked out or covered): the IMU alone carried the state
   kImuGap,        // IMU samples were missing since the previous state: vision carried it (ImuGapModel)
+  kLost,          // the VIO lost track at this frame (VioLossEvent): no state, the window starts again
+  kRestarted,     // the first state of the window started again after a loss
 };
 
 struct VioStatusRecord {
@@ -21,12 +23,15 @@ struct VioStatusRecord {
   int frame_matches = 0;
   int landmarks = 0;
   double imu_gap_s = 0;
+  VioLoss loss = VioLoss::kNone;  // kLost: why
 };
 
 constexpr int kFewStereoMatches = 15;
 
-// An IMU gap first (the state lacked its inertial half), then the frame's matches.
+// A restart first, then an IMU gap (the state lacked its inertial half), then the frame's matches.
 VioStatusRecord vio_status(const VioStateOutput& state);
-std::string vio_status_name(VioStatus status);
+VioStatusRecord vio_status(const VioLossEvent& loss);
+// "tracking", "few_matches", "inertial_only", "imu_gap", "restarted", or the loss's name ("lost_...").
+std::string vio_status_name(const VioStatusRecord& record);
 
 }  // namespace vilslam

@@ -1,7 +1,8 @@
 // Sensor faults inside one run (docs/pipeline.md, "Sensor faults"): the simulated 8 m room lap with a 2 s camera
 // blackout, a 0.5 s IMU gap and a 1.5 s LiDAR dropout. The run finishes, each module's status file says what
 // happened when it happened, and the LiDAR poses stay on the truth; with the IMU factor across the gap taken at
-// face value (no ImuGapModel noise) the VIO and the LiDAR poses it guides go metres off.
+// face value (no ImuGapModel noise) and the loss check off, the VIO and the LiDAR poses it guides go metres off; with
+// the loss check on, the VIO declares itself lost, starts again, and the LiDAR poses stay on the truth.
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
@@ -52,8 +53,9 @@ class SensorFaults : public ::testing::Test {
     fs::create_directories(*root_);
     std::ofstream(*root_ / "faults.yaml") << kFaults;
     std::ofstream(*root_ / "run.yaml") << kShortGap;
-    std::ofstream(*root_ / "face_value.yaml") << kShortGap
-                                              << "vio:\n  imu_gap:\n    rate_sigma_rad_s: 0\n    accel_sigma_m_s2: 0\n";
+    const std::string face_value = std::string(kShortGap) + "vio:\n  imu_gap:\n    rate_sigma_rad_s: 0\n    accel_sigma_m_s2: 0\n";
+    std::ofstream(*root_ / "restarted.yaml") << face_value;
+    std::ofstream(*root_ / "face_value.yaml") << face_value << "  loss:\n    enabled: false\n";
     const test::CliResult sim = test::run_cli("simulate room --length 8 --seed 2 --config " +
                                               (*root_ / "faults.yaml").string() + " --out " + data());
     ASSERT_EQ(sim.exit_code, 0) << sim.output;
@@ -63,10 +65,14 @@ class SensorFaults : public ::testing::Test {
     const test::CliResult face = test::run_cli("run --mode vil " + data() + " --config " +
                                                (*root_ / "face_value.yaml").string() + " --out " + run("face_value"));
     ASSERT_EQ(face.exit_code, 0) << face.output;
+    restarted_ = new test::CliResult(test::run_cli("run --mode vil " + data() + " --config " +
+                                                   (*root_ / "restarted.yaml").string() + " --out " + run("restarted")));
+    ASSERT_EQ(restarted_->exit_code, 0) << restarted_->output;
   }
   static void TearDownTestSuite() {
     delete root_;
     delete output_;
+    delete restarted_;
   }
   static std::string data() { return (*root_ / "data").string(); }
   static std::string run(const std::string& name) { return (*root_ / name).string(); }
@@ -81,9 +87,11 @@ class SensorFaults : public ::testing::Test {
 
   static fs::path* root_;
   static test::CliResult* output_;
+  static test::CliResult* restarted_;  // the gap at face value, the VIO's loss check on (the default)
 };
 fs::path* SensorFaults::root_ = nullptr;
 test::CliResult* SensorFaults::output_ = nullptr;
+test::CliResult* SensorFaults::restarted_ = nullptr;
 
 TEST_F(SensorFaults, EachModulesStatusSaysWhatHappenedAndWhen) {
   ASSERT_NE(output_, nullptr);
@@ -141,6 +149,48 @@ TEST_F(SensorFaults, PosesStayOnTheTruthThroughEveryFault) {
   EXPECT_LT(vio_m, 0.08);
   EXPECT_GT(face_lidar_m, 4.0 * lidar_m);
   EXPECT_GT(face_vio_m, 4.0 * vio_m);
+}
+
+}  // namespace
+}  // namespace vilslam
+
+namespace vilslam {
+namespace {
+
+// The gap at face value with the loss check on: the VIO notices that its window rejects the images, says so, drops
+// the window and aligns again; the LiDAR side maps the sweeps of that stretch on its own. The LiDAR poses stay as
+// close to the truth as with the gap model, and the VIO's as close as the face-value run's are far.
+TEST_F(SensorFaults, TheVioDeclaresItselfLostAndStartsAgain) {
+  ASSERT_NE(restarted_, nullptr);
+  std::vector<CsvRow> lost, restarted;
+  for (const CsvRow& r : read_status_csv(run("restarted") + "/vio_status.csv")) {
+    if (r.cells.at(1).rfind("lost_", 0) == 0) lost.push_back(r);
+    if (r.cells.at(1) == "restarted") restarted.push_back(r);
+  }
+  ASSERT_EQ(lost.size(), 1u);
+  EXPECT_EQ(lost[0].cells.at(1), "lost_inconsistent");
+  EXPECT_GT(lost[0].t_s, 6.0);
+  EXPECT_LT(lost[0].t_s, 8.0);
+  ASSERT_EQ(restarted.size(), 1u);
+  EXPECT_GT(restarted[0].t_s, lost[0].t_s);
+  EXPECT_LT(restarted[0].t_s, lost[0].t_s + 0.2);
+  EXPECT_NE(restarted_->output.find("vio lost_inconsistent from"), std::string::npos) << restarted_->output;
+  // The sweeps between the loss and the restarted window's first pose were mapped without a VIO prior.
+  int without_prior = 0;
+  for (const CsvRow& r : read_status_csv(run("restarted") + "/lidar_status.csv")) {
+    if (r.cells.at(3) == "0") {
+      ++without_prior;
+      EXPECT_GT(r.t_s, lost[0].t_s - 0.2) << "a sweep without a prior before the loss";
+    }
+  }
+  EXPECT_GT(without_prior, 0);
+  const double lidar_m = ape_m("restarted", "lidar_final.tum", "lidar");
+  const double vio_m = ape_m("restarted", "vio_camera.tum", "imu");
+  const double face_vio_m = ape_m("face_value", "vio_camera.tum", "imu");
+  std::printf("SE(3) APE after a restart: LiDAR %.4f m, VIO %.4f m (face value without the loss check: VIO %.4f m)\n",
+              lidar_m, vio_m, face_vio_m);
+  EXPECT_LT(lidar_m, 0.05);
+  EXPECT_LT(4.0 * vio_m, face_vio_m);
 }
 
 }  // namespace

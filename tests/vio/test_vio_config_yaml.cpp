@@ -36,6 +36,16 @@ imu_gap:
   max_step_s: 0.1
   rate_sigma_rad_s: 0.5
   accel_sigma_m_s2: 2.0
+loss:
+  enabled: false
+  max_speed_m_s: 20.0
+  max_gyro_bias_rad_s: 0.2
+  max_accel_bias_m_s2: 1.5
+  min_frame_matches: 12
+  min_landmark_share: 0.2
+  max_cost_per_landmark: 30.0
+  recent_states: 8
+  inconsistent_states: 6
 prior_rotation_sigma_rad: 0.03
 moving_rotation_sigma_rad: 0.2
 prior_position_sigma_m: 0.002
@@ -87,6 +97,15 @@ TEST(VioConfigYaml, ReadsEveryKey) {
   EXPECT_EQ(c.imu_gap.max_step_s, 0.1);
   EXPECT_EQ(c.imu_gap.rate_sigma_rad_s, 0.5);
   EXPECT_EQ(c.imu_gap.accel_sigma_m_s2, 2.0);
+  EXPECT_FALSE(c.loss.enabled);
+  EXPECT_EQ(c.loss.max_speed_m_s, 20.0);
+  EXPECT_EQ(c.loss.max_gyro_bias_rad_s, 0.2);
+  EXPECT_EQ(c.loss.max_accel_bias_m_s2, 1.5);
+  EXPECT_EQ(c.loss.min_frame_matches, 12);
+  EXPECT_EQ(c.loss.min_landmark_share, 0.2);
+  EXPECT_EQ(c.loss.max_cost_per_landmark, 30.0);
+  EXPECT_EQ(c.loss.recent_states, 8);
+  EXPECT_EQ(c.loss.inconsistent_states, 6);
   EXPECT_EQ(c.prior_rotation_sigma_rad, 0.03);
   EXPECT_EQ(c.moving_rotation_sigma_rad, 0.2);
   EXPECT_EQ(c.prior_position_sigma_m, 0.002);
@@ -125,6 +144,11 @@ TEST(VioConfigYaml, BadValuesNameTheKey) {
       {"initializer:\n  max_gyro_std_rad_s: -0.1\n", "initializer.max_gyro_std_rad_s"},
       {"initializer:\n  alignment:\n    frames: 2\n", "initializer.alignment.frames"},
       {"initializer:\n  moving_start: maybe\n", "initializer.moving_start"},
+      {"loss:\n  min_landmark_share: 1.5\n", "loss.min_landmark_share"},
+      {"loss:\n  inconsistent_states: 0\n", "loss.inconsistent_states"},
+      {"loss:\n  inconsistent_states: 11\n", "loss.inconsistent_states"},
+      {"loss:\n  max_cost_per_landmark: 0\n", "loss.max_cost_per_landmark"},
+      {"loss:\n  max_speed_m_s: -1\n", "loss.max_speed_m_s"},
       {"prior_position_sigma_m: 0\n", "prior_position_sigma_m"},
       {"window_size: 4\n", "window_size"},
   };
