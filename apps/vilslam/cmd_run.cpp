@@ -2,6 +2,7 @@
 // offline and deterministic, or with the data released on the wall clock (docs/pipeline.md).
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -102,6 +103,42 @@ void print_summary(const OfflineRunResult& r, TimeNs start_t_ns) {
   }
 }
 
+// --load-map with --save-map: a map holds one clock, so only a recording that starts after the map's last pose
+// extends it (recordings on a robot's wall clock do). Checked before the run, so nothing is written otherwise.
+void check_map_extensible(const std::string& map_dir, const DatasetReader& reader) {
+  const Trajectory poses = loop::load_map(map_dir).poses;
+  if (!poses.empty() && reader.summary().start_t_ns <= poses.back().t_ns) {
+    throw InputError("--save-map", "the dataset starts at " + std::to_string(reader.summary().start_t_ns) +
+                                       " ns, not after the last pose of " + map_dir + " (" +
+                                       std::to_string(poses.back().t_ns) +
+                                       " ns): a map holds one clock, so only a later recording extends it");
+  }
+}
+
+// --save-map: the run's key frames and final poses, after the loaded map's when there is one (the loaded map
+// extended: the run joins it only once re-localized, its poses then in the map's frame; docs/loop.md).
+void save_run_map(const std::string& dir, const OfflineRunConfig& config, const DatasetReader& reader,
+                  const OfflineRunResult& result) {
+  const std::uint64_t vocabulary_id = loop::vocabulary_identity(vocabulary_file(config.vocabulary));
+  loop::SavedMap map;
+  if (config.load_map.empty()) {
+    RigCalibration rig = reader.calibration();
+    if (result.time_offset) rig.cam_time_offset_ns = s_to_ns(result.time_offset->offset_s);
+    map = empty_map(rig, vocabulary_id);
+  } else {
+    map = load_checked_map(config.load_map, vocabulary_id, reader.calibration());
+  }
+  const std::size_t before = map.key_frames.size();
+  if (!join_map(map, *result.loop)) {
+    throw std::runtime_error("the run never re-localized in " + config.load_map +
+                             ": its poses are not in the map's frame, so the map was not extended (" + dir +
+                             " not written; the run's outputs are)");
+  }
+  loop::save_map(dir, map);
+  std::printf("wrote map %s (%zu key frames, %zu poses; %zu key frames from this run)\n", dir.c_str(),
+              map.key_frames.size(), map.poses.size(), map.key_frames.size() - before);
+}
+
 vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and write trajectories and timings",
                           [](CLI::App& app) {
   auto o = std::make_shared<Options>();
@@ -116,11 +153,11 @@ vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and writ
                  "deterministic (docs/pipeline.md)")
       ->check(CLI::PositiveNumber);
   app.add_option("--save-map", o->save_map,
-                 "Also write the map re-localization needs to this folder (vil with loop closure; docs/formats.md)");
+                 "Also write the map re-localization needs to this folder (vil with loop closure; docs/formats.md); "
+                 "with --load-map, the loaded map extended by this run once it re-localized");
   app.add_option("--load-map", o->load_map,
                  "Re-localize in this saved map and give the LiDAR poses in its frame once there (vil with loop "
-                 "closure; docs/loop.md, \"Map reuse\")")
-      ->excludes("--save-map");
+                 "closure; docs/loop.md, \"Map reuse\"); the map itself is not changed");
   app.add_option("--reset-at", o->reset_at_s,
                  "Reset the whole state at these times (s from the first event; repeatable): each new segment "
                  "re-localizes in the map of the ones before (vil with loop closure; docs/loop.md, \"Forced resets\")")
@@ -135,21 +172,14 @@ vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and writ
     config.reset_at_s = o->reset_at_s;
     config.realtime.speed = o->realtime_speed;
     const auto reader = open_dataset(o->dataset, vilslam::cli::dataset_options(*bag_args));
+    if (!o->save_map.empty() && !config.load_map.empty()) check_map_extensible(config.load_map, *reader);
     OfflineRunResult result;
     {
       Progress progress("run", 1.0);
       result = run_offline(*reader, config, [&progress](double fraction) { progress.update(fraction); });
     }
     write_run_outputs(o->out_dir, config, result);
-    if (!o->save_map.empty()) {
-      RigCalibration rig = reader->calibration();
-      if (result.time_offset) rig.cam_time_offset_ns = s_to_ns(result.time_offset->offset_s);
-      loop::SavedMap map = empty_map(rig, loop::vocabulary_identity(vocabulary_file(config.vocabulary)));
-      join_map(map, *result.loop);
-      loop::save_map(o->save_map, map);
-      std::printf("wrote map %s (%zu key frames, %zu poses)\n", o->save_map.c_str(), map.key_frames.size(),
-                  map.poses.size());
-    }
+    if (!o->save_map.empty()) save_run_map(o->save_map, config, *reader, result);
     print_summary(result, reader->summary().start_t_ns);
     if (!config.load_map.empty() && !result.loop->relocalized_t_ns) {
       std::printf("not re-localized in %s: every pose is in the run's own frame\n", config.load_map.c_str());

@@ -2,7 +2,8 @@
 // the same world with other sensor noise, started half-way round and 0.3 m to the side (so it starts on the far
 // side, facing the other way). `run --load-map` re-localizes within seconds of motion, and its LiDAR poses, in
 // the map's frame with no alignment of the run, are within centimetres of the truth; without the map the same
-// poses are metres off in that frame. A map that is not one is refused before anything is written.
+// poses are metres off in that frame; with --save-map the run extends the map. A map that is not one is refused
+// before anything is written.
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
@@ -23,9 +24,13 @@ class MapReuse : public ::testing::Test {
   static void SetUpTestSuite() {
     root_ = new fs::path(test::process_temp_root() / "map_reuse");
     fs::remove_all(*root_);
+    // The second recording is a later session on the same clock (as a robot's wall clock is), so it may extend
+    // the map.
+    fs::create_directories(*root_);
+    std::ofstream(*root_ / "later.yaml") << "motion:\n  start_time_ns: 100000000000\n";
     for (const std::string& args : {std::string("--seed 1 --out ") + (*root_ / "first").string(),
-                                    std::string("--world-seed 1 --seed 2 --route-start 0.5 --route-offset 0.3 --out ") +
-                                        (*root_ / "second").string()}) {
+                                    std::string("--world-seed 1 --seed 2 --route-start 0.5 --route-offset 0.3 --config ") +
+                                        (*root_ / "later.yaml").string() + " --out " + (*root_ / "second").string()}) {
       const test::CliResult sim = test::run_cli("simulate room --length 8 " + args);
       ASSERT_EQ(sim.exit_code, 0) << sim.output;
     }
@@ -55,7 +60,7 @@ fs::path* MapReuse::root_ = nullptr;
 TEST_F(MapReuse, AnotherRouteRelocalizesWithinSecondsAndIsInTheMapsFrame) {
   const fs::path dir = test::temp_dir();
   const test::CliResult r = test::run_cli("run --mode vil " + second() + " --out " + (dir / "run").string() +
-                                          " --load-map " + map());
+                                          " --load-map " + map() + " --save-map " + (dir / "extended").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("re-localized in the map"), std::string::npos) << r.output;
   const YAML::Node reloc = YAML::LoadFile((dir / "run/relocalization.json").string());
@@ -72,6 +77,23 @@ TEST_F(MapReuse, AnotherRouteRelocalizesWithinSecondsAndIsInTheMapsFrame) {
   EXPECT_LT(ns_to_s(reloc["relocalized_t_ns"].as<TimeNs>() - moving_ns), 5.0);
   EXPECT_GE(reloc["map_loops_in_graph"].as<int>(), 2);
   EXPECT_LT(ape_in_map_frame(dir / "run"), 0.05);
+
+  // The map extended by the run: the loaded map's key frames and poses unchanged, then the run's, in the map's
+  // frame (its final poses) and on the one clock.
+  const Trajectory map_poses = read_trajectory(map() + "/poses.tum", TrajectoryFormat::kTum);
+  const Trajectory extended = read_trajectory((dir / "extended/poses.tum").string(), TrajectoryFormat::kTum);
+  const Trajectory run_poses = read_trajectory((dir / "run/lidar_final.tum").string(), TrajectoryFormat::kTum);
+  ASSERT_EQ(extended.size(), map_poses.size() + run_poses.size());
+  for (std::size_t i = 0; i < extended.size(); ++i) {
+    const TimedPose& expected = i < map_poses.size() ? map_poses[i] : run_poses[i - map_poses.size()];
+    EXPECT_EQ(extended[i].t_ns, expected.t_ns);
+    EXPECT_LT((extended[i].T_W_B.translation() - expected.T_W_B.translation()).norm(), 1e-6);
+  }
+  const YAML::Node map_yaml = YAML::LoadFile(map() + "/map.yaml");
+  const YAML::Node extended_yaml = YAML::LoadFile((dir / "extended/map.yaml").string());
+  EXPECT_GT(extended_yaml["key_frames"].as<int>(), map_yaml["key_frames"].as<int>());
+  const test::CliResult info = test::run_cli("map-info " + (dir / "extended").string());
+  EXPECT_EQ(info.exit_code, 0) << info.output;
 
   // The same run without the map: its own frame starts where it stands, far from the map's.
   const test::CliResult alone = test::run_cli("run --mode vil " + second() + " --out " + (dir / "alone").string());
@@ -94,6 +116,11 @@ TEST_F(MapReuse, AMapThatIsNotOneIsRefusedBeforeAnythingIsWritten) {
   refused("--mode vil " + second() + " --load-map " + (dir / "cut").string(), key_frames.string());
   refused("--mode vil " + second() + " --load-map " + (dir / "none").string(), (dir / "none").string());
   refused("--mode vio " + second() + " --load-map " + map(), "mode vil with loop closure");
+  // Extending the map by a recording that does not start after it (its clock would run backwards).
+  refused("--mode vil " + (*root_ / "first").string() + " --load-map " + map() + " --save-map " +
+              (dir / "extended").string(),
+          "only a later recording extends it");
+  EXPECT_FALSE(fs::exists(dir / "extended"));
 }
 
 }  // namespace
