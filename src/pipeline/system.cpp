@@ -144,11 +144,13 @@ class SmootherSide {
     vio_.on_state([this](const VioStateOutput& s) {
       result_->camera_states.push_back({s.state.t_ns, s.state.T_W_I()});
       result_->vio_status.push_back(vio_status(s));
+      if (shared_->callbacks.vio_status) shared_->callbacks.vio_status(result_->vio_status.back());
       if (shared_->callbacks.camera_state) shared_->callbacks.camera_state(result_->camera_states.back());
       if (shared_->live) shared_->live->anchor(s.state);
     });
     vio_.on_lost([this](const VioLossEvent& e) {
       result_->vio_status.push_back(vio_status(e));
+      if (shared_->callbacks.vio_status) shared_->callbacks.vio_status(result_->vio_status.back());
       if (shared_->live) shared_->live->lost();
       if (lidar_) {
         lidar_->push(new_poses());

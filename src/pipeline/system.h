@@ -11,6 +11,7 @@
 #include "common/types.h"
 #include "loop/map_file.h"
 #include "pipeline/run_types.h"
+#include "vio/vio_status.h"
 
 namespace vilslam {
 
@@ -22,6 +23,9 @@ struct SystemCallbacks {
   std::function<void(const TimedPose&)> imu_pose;
   // vio and vil: T_W_I of each optimized stereo-frame state (smoother thread).
   std::function<void(const TimedPose&)> camera_state;
+  // vio and vil: what the VIO went through at each state, and each loss (`lost_...`) as it is declared, the
+  // rows of vio_status.csv (vio/vio_status.h; smoother thread).
+  std::function<void(const VioStatusRecord&)> vio_status;
   // vil and lidar-only: each mapped sweep, the mapper's own pose and fit (LiDAR thread).
   std::function<void(const lidar::LidarMappingResult&)> lidar_pose;
   // vil: the same sweep's pose with the loop corrections known at that moment (LiDAR thread).

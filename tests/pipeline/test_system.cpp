@@ -70,6 +70,8 @@ TEST_F(SystemApi, PushedEventsGiveTheOfflineRunAndEveryOutputReachesItsCallback)
   SystemCallbacks callbacks;
   callbacks.imu_pose = [&](const TimedPose& p) { live.push_back(p); };
   callbacks.camera_state = [&](const TimedPose& p) { states.push_back(p); };
+  std::vector<VioStatusRecord> statuses;
+  callbacks.vio_status = [&](const VioStatusRecord& r) { statuses.push_back(r); };
   callbacks.lidar_pose = [&](const lidar::LidarMappingResult& m) { mapped.push_back(m); };
   callbacks.lidar_global_pose = [&](const TimedPose& p) { global.push_back(p); };
   callbacks.loop_candidate = [&](const loop::LoopCandidateRecord& r) {
@@ -105,6 +107,11 @@ TEST_F(SystemApi, PushedEventsGiveTheOfflineRunAndEveryOutputReachesItsCallback)
 
   // Every output reached its callback, in order.
   EXPECT_TRUE(same_poses(states, result.camera_states));
+  ASSERT_EQ(statuses.size(), result.vio_status.size());
+  for (std::size_t i = 0; i < statuses.size(); ++i) {
+    EXPECT_EQ(statuses[i].t_ns, result.vio_status[i].t_ns);
+    EXPECT_EQ(vio_status_name(statuses[i]), vio_status_name(result.vio_status[i]));
+  }
   EXPECT_TRUE(same_poses(lidar_poses(mapped), lidar_poses(result.lidar)));
   EXPECT_TRUE(same_poses(global, result.loop->lidar_global));
   EXPECT_EQ(candidates, result.loop->candidates.size());
