@@ -126,20 +126,8 @@ std::vector<LoopCandidateRecord> LoopCloser::add_and_detect(KeyFrame key_frame,
   return records;
 }
 
-LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, double bow_score,
-                                       const CandidatePool& pool,
-                                       const std::function<SE3(std::size_t)>& T_W_Lv_of_pose) const {
-  LoopCandidateRecord r;
-  r.map_candidate = pool.from_map;
-  r.query_key_frame = v.id;
-  r.candidate_key_frame = u.id;
-  r.query_pose_index = v.pose_index;
-  r.candidate_pose_index = u.pose_index;
-  r.query_t_ns = v.scan_t_ns;
-  r.candidate_t_ns = u.scan_t_ns;
-  r.bow_score = bow_score;
-  if (bow_score < config_.min_bow_score) return rejected(std::move(r), "bow_score");
-
+std::optional<LoopCloser::InitialEstimate> LoopCloser::visual_estimate(const KeyFrame& u, const KeyFrame& v,
+                                                                       LoopCandidateRecord& r) const {
   // Descriptor matching of the left key images (paper, "Loop detection"), against candidate rows with a 3D point.
   std::vector<int> rows_with_point;
   for (int i = 0; i < u.image.descriptors.rows; ++i) {
@@ -152,7 +140,10 @@ LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, dou
   const std::vector<DescriptorMatch> matches =
       match_descriptors(v.image.descriptors, train, config_.descriptor_matching);
   r.descriptor_matches = static_cast<int>(matches.size());
-  if (r.descriptor_matches < config_.min_descriptor_matches) return rejected(std::move(r), "descriptor_matches");
+  if (r.descriptor_matches < config_.min_descriptor_matches) {
+    r.rejected_by = "descriptor_matches";
+    return std::nullopt;
+  }
 
   // Visual loop constraint by EPnP on the candidate's triangulated points (paper, "Loop constraint").
   std::vector<Vec3> p_C0u;
@@ -168,10 +159,55 @@ LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, dou
   pnp_config.ransac_seed = config_.pnp_ransac_seed;
   const MotionEstimate pnp = estimate_motion_pnp(p_C0u, xy_C0v, v.image.focal_px, pnp_config, PnpSolver::kEPnP);
   r.pnp_inliers = pnp.inliers;
-  if (!pnp.valid || r.pnp_inliers < config_.min_pnp_inliers) return rejected(std::move(r), "pnp_inliers");
-  r.T_Lu_Lv_epnp = lidar_constraint_from_camera(pnp.T_C0cur_C0prev, u.T_L_C0, v.T_L_C0);  // cur = v, prev = u
+  if (!pnp.valid || r.pnp_inliers < config_.min_pnp_inliers) {
+    r.rejected_by = "pnp_inliers";
+    return std::nullopt;
+  }
+  // EPnP's information, from its reprojection Jacobians, moved into the key scans' frames.
+  const Mat6 information = information_in_lidar_frames(
+      pnp_information(pnp.T_C0cur_C0prev, p_C0u, xy_C0v, v.image.focal_px, config_.pnp_reprojection_px,
+                      config_.epnp_sigma_px),
+      pnp.T_C0cur_C0prev, v.T_L_C0);
+  return InitialEstimate{lidar_constraint_from_camera(pnp.T_C0cur_C0prev, u.T_L_C0, v.T_L_C0),  // cur = v, prev = u
+                         information};
 
-  // Refinement by ICP of the sparse LiDAR features, initialized at the visual constraint.
+}
+
+Mat6 LoopCloser::resume_information() const {
+  Mat6 information = Mat6::Zero();
+  information.diagonal() << Vec3::Constant(1.0 / (config_.resume_sigma_m * config_.resume_sigma_m)),
+      Vec3::Constant(1.0 / (config_.resume_sigma_rad * config_.resume_sigma_rad));
+  return information;
+}
+
+LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, double bow_score,
+                                       const CandidatePool& pool,
+                                       const std::function<SE3(std::size_t)>& T_W_Lv_of_pose) const {
+  LoopCandidateRecord r;
+  r.map_candidate = pool.from_map;
+  r.query_key_frame = v.id;
+  r.candidate_key_frame = u.id;
+  r.query_pose_index = v.pose_index;
+  r.candidate_pose_index = u.pose_index;
+  r.query_t_ns = v.scan_t_ns;
+  r.candidate_t_ns = u.scan_t_ns;
+  r.bow_score = bow_score;
+  if (bow_score < config_.min_bow_score) return rejected(std::move(r), "bow_score");
+
+  // The visual estimate: descriptor matching and EPnP (paper); for a resume candidate that fails them, the resume
+  // guess instead, when there is one (set_resume_guess).
+  std::optional<InitialEstimate> initial = visual_estimate(u, v, r);
+  if (!initial) {
+    const bool resume_candidate = pool.from_map && u.id + resume_candidates_ >= map_key_frames_.size();
+    if (!resume_candidate || !resume_T_map_run_) return r;
+    initial = InitialEstimate{pool.T_W_L_of_pose(u.pose_index).inverse() * *resume_T_map_run_ * T_W_Lv_of_pose(v.pose_index),
+                              resume_information()};
+    r.resumed = true;
+    r.rejected_by.clear();
+  }
+  r.T_Lu_Lv_epnp = initial->T_Lu_Lv;
+
+  // Refinement by ICP of the sparse LiDAR features, initialized at the visual constraint (or the resume guess).
   const lidar::FeatureMap map =
       candidate_map(pool.key_frames, u.id, config_.submap_half_width, lidar_.map, pool.T_W_L_of_pose);
   const lidar::RegistrationResult icp = lidar::register_scan(v.features_L, map, r.T_Lu_Lv_epnp, lidar_.registration);
@@ -208,7 +244,8 @@ LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, dou
       r.icp_inlier_fraction < config_.icp_min_inlier_fraction || r.icp_rms_m > config_.icp_max_rms_m) {
     return rejected(std::move(r), "icp_fitness");
   }
-  if (r.icp_degenerate_directions > config_.icp_max_degenerate_directions) {
+  const int max_degenerate = r.resumed ? config_.resume_max_degenerate_directions : config_.icp_max_degenerate_directions;
+  if (r.icp_degenerate_directions > max_degenerate) {
     return rejected(std::move(r), "icp_degenerate");
   }
   if (r.epnp_icp_translation_m > config_.max_epnp_icp_translation_m ||
@@ -219,11 +256,7 @@ LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, dou
                                                         config_.max_odometry_disagreement_per_m * r.path_length_m) {
     return rejected(std::move(r), "odometry_disagree");
   }
-  // EPnP's information, from its reprojection Jacobians, moved into the key scans' frames, and ICP's, from its J^T J.
-  const Mat6 epnp_information = information_in_lidar_frames(
-      pnp_information(pnp.T_C0cur_C0prev, p_C0u, xy_C0v, v.image.focal_px, config_.pnp_reprojection_px,
-                      config_.epnp_sigma_px),
-      pnp.T_C0cur_C0prev, v.T_L_C0);
+  const Mat6& epnp_information = initial->information;
   // Along a degenerate direction the remapping kept EPnP's value: ICP measured nothing there.
   Vec6 icp_eigenvalues = icp.degeneracy.eigenvalues;
   for (int i = 0; i < 6; ++i) {

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,15 @@ struct LoopClosureConfig {
   int relocalization_loops = 2;
   double relocalization_agreement_m = 0.3;
   double relocalization_agreement_rad = 0.035;  // 2 degrees
+  // Resuming after a reset (docs/loop.md, "Forced resets"): a resume candidate whose visual stages fail is verified
+  // by ICP from the resume guess (LoopCloser::set_resume_guess), which stands in for EPnP with these sigmas, for
+  // the first resume_window_s of the new segment. 0 s: never.
+  double resume_window_s = 10.0;
+  double resume_sigma_m = 0.1;
+  double resume_sigma_rad = 0.02;
+  // Degenerate ICP directions a resumed loop may have (the guess's value kept along them: a corridor's axis and
+  // a tunnel's roll).
+  int resume_max_degenerate_directions = 2;
 };
 
 // The `loop_closure:` section of a run config, bound to c's fields; validate after reading.
@@ -112,6 +122,9 @@ struct LoopCandidateRecord {
   // A candidate of a loaded map: candidate_key_frame and candidate_pose_index index the map's key frames and
   // poses, candidate_t_ns is on the map's clock.
   bool map_candidate = false;
+  // A resume candidate verified from the resume guess: its visual stages failed (descriptor_matches or pnp_inliers
+  // below their bounds) and T_Lu_Lv_epnp holds the guess.
+  bool resumed = false;
   std::string rejected_by;
 
   bool accepted() const { return rejected_by.empty(); }
@@ -145,6 +158,11 @@ class LoopCloser {
   // This run's poses (T_W_L_of_pose) are now in the map's frame: its candidates get the odometry check, with
   // config.max_odometry_disagreement_m as the allowance.
   void set_in_map_frame(bool in_map_frame) { in_map_frame_ = in_map_frame; }
+  // After a reset, where this run's frame is believed to lie in the map (T_map_run): the map's last pose carried
+  // across the reset by the new segment's first motion (LoopClosureModule). Resume candidates that fail the visual
+  // stages are then verified by ICP from it; std::nullopt stops that.
+  void set_resume_guess(std::optional<SE3> T_map_run) { resume_T_map_run_ = std::move(T_map_run); }
+  std::size_t resume_candidates() const { return resume_candidates_; }
   const std::vector<KeyFrame>& map_key_frames() const { return map_key_frames_; }
   const Trajectory& map_poses() const { return map_poses_; }
 
@@ -160,6 +178,15 @@ class LoopCloser {
     std::function<SE3(std::size_t)> T_W_L_of_pose;  // of the pool's pose indices
     bool from_map = false;
   };
+  // The relative pose the ICP starts from and its information.
+  struct InitialEstimate {
+    SE3 T_Lu_Lv;
+    Mat6 information;
+  };
+  // Descriptor matching and EPnP of u's and v's key images (their scores go into r); none when a stage fails (its
+  // name in r.rejected_by).
+  std::optional<InitialEstimate> visual_estimate(const KeyFrame& u, const KeyFrame& v, LoopCandidateRecord& r) const;
+  Mat6 resume_information() const;
   // Runs the stages on candidate u of query v and stops at the first that fails. T_W_Lv_of_pose: this run's poses.
   LoopCandidateRecord verify(const KeyFrame& u, const KeyFrame& v, double bow_score, const CandidatePool& pool,
                              const std::function<SE3(std::size_t)>& T_W_Lv_of_pose) const;
@@ -176,6 +203,7 @@ class LoopCloser {
   BowDatabase map_database_;
   std::vector<KeyFrame> map_key_frames_;
   std::size_t resume_candidates_ = 0;
+  std::optional<SE3> resume_T_map_run_;
   Trajectory map_poses_;
   bool in_map_frame_ = false;
 };

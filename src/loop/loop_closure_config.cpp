@@ -50,6 +50,9 @@ YamlFields loop_closure_yaml_fields(LoopClosureConfig& c) {
       yaml_value("relocalization_loops", c.relocalization_loops),
       yaml_value("relocalization_agreement_m", c.relocalization_agreement_m),
       yaml_value("relocalization_agreement_rad", c.relocalization_agreement_rad),
+      yaml_value("resume_window_s", c.resume_window_s), yaml_value("resume_sigma_m", c.resume_sigma_m),
+      yaml_value("resume_sigma_rad", c.resume_sigma_rad),
+      yaml_value("resume_max_degenerate_directions", c.resume_max_degenerate_directions),
   };
 }
 
@@ -68,6 +71,10 @@ void validate_loop_closure_config(const LoopClosureConfig& c, const std::string&
   require(c.relocalization_loops >= 1, "relocalization_loops must be at least 1");
   require(c.relocalization_agreement_m > 0 && c.relocalization_agreement_rad > 0,
           "relocalization_agreement_m and relocalization_agreement_rad must be positive");
+  require(c.resume_window_s >= 0, "resume_window_s must be >= 0");
+  require(c.resume_max_degenerate_directions >= 0 && c.resume_max_degenerate_directions <= 6,
+          "resume_max_degenerate_directions must be in [0, 6]");
+  require(c.resume_sigma_m > 0 && c.resume_sigma_rad > 0, "resume_sigma_m and resume_sigma_rad must be positive");
   require(c.min_bow_score >= 0 && c.min_bow_score <= 1, "min_bow_score must be in [0, 1]");
   require(c.descriptor_matching.max_distance >= 0 && c.descriptor_matching.max_distance <= 256,
           "descriptor_matching.max_distance must be in [0, 256]");

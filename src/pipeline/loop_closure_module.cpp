@@ -1,6 +1,7 @@
 #include "pipeline/loop_closure_module.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <limits>
 
@@ -16,6 +17,7 @@ double elapsed_ms(std::chrono::steady_clock::time_point start) {
 constexpr TimeNs kRecentFramesNs = 2'000'000'000;  // stereo pairs kept as key image candidates
 // After a reset: the map's last key frames verified at every query (about the last 3 m of the route).
 constexpr std::size_t kResumeCandidates = 3;
+constexpr double kResumeVelocityBaselineS = 0.1;  // the resume guess's velocity: the IMU motion's first 0.1 s
 
 }  // namespace
 
@@ -85,6 +87,7 @@ void LoopClosureModule::add_key_frame(const PendingKeyScan& scan, const StereoFr
   last_key_index_ = scan.pose_index;
 
   start = std::chrono::steady_clock::now();
+  closer_->set_resume_guess(resume_guess(key_frame.scan_t_ns));
   const auto records = closer_->add_and_detect(std::move(key_frame), [this](std::size_t i) { return graph_.pose(i); });
   out_.detection_ms.push_back(elapsed_ms(start));
   bool loop_found = false;
@@ -137,6 +140,30 @@ bool LoopClosureModule::add_map_loop(const loop::LoopCandidateRecord& r) {
   relocalization_.reset();
   closer_->set_in_map_frame(true);
   return true;
+}
+
+std::optional<SE3> LoopClosureModule::resume_guess(TimeNs query_t_ns) const {
+  const Trajectory& imu = *imu_motion_;  // this segment's jump-free IMU motion T_O_I, from its first state on
+  if (closer_->resume_candidates() == 0 || relocalized() || graph_.size() == 0 || imu.size() < 2) return std::nullopt;
+  const TimedPose& first = graph_.trajectory().front();
+  if (ns_to_s(query_t_ns - first.t_ns) > config_.resume_window_s || first.t_ns < imu.front().t_ns) return std::nullopt;
+  // The LiDAR pose at the segment's first IMU pose (before its first sweep's), by the IMU motion between the two;
+  // from there back to the map's last pose at the IMU's first velocity (a fraction of a second).
+  const auto T_O_L = [&](const SE3& T_O_I) { return T_O_I * calib_.T_I_L; };
+  const TimedPose& a = imu.front();
+  std::size_t k = 1;
+  while (k + 1 < imu.size() && ns_to_s(imu[k].t_ns - a.t_ns) < kResumeVelocityBaselineS) ++k;
+  const TimedPose& b = imu[k];
+  const SE3 T_run_La = first.T_W_B * T_O_L(pose_at(imu, first.t_ns)).inverse() * T_O_L(a.T_W_B);
+  const Vec6 motion = (T_O_L(a.T_W_B).inverse() * T_O_L(b.T_W_B)).log();
+  const TimedPose& map_last = closer_->map_poses().back();
+  const double gap_ratio = double(a.t_ns - map_last.t_ns) / double(b.t_ns - a.t_ns);
+  const SE3 T_map_run = map_last.T_W_B * SE3::exp(motion * gap_ratio) * T_run_La.inverse();
+  // Both frames are the VIO's, gravity-aligned: the guess keeps its yaw only, not the tilt the first poses of a
+  // just-aligned window still carry.
+  const Mat3& R = T_map_run.rotation();
+  const Mat3 R_yaw = Eigen::AngleAxisd(std::atan2(R(1, 0), R(0, 0)), Vec3::UnitZ()).toRotationMatrix();
+  return SE3(R_yaw, T_map_run.translation());
 }
 
 MapCorrection LoopClosureModule::correction_at(std::size_t pose_index) const {

@@ -95,6 +95,9 @@ class LoopClosureModule {
   // An accepted loop to a map key frame: a factor once re-localized, else a vote for where this run's frame
   // lies in the map, which re-localizes when enough in a row agree. True when the graph has a new map loop.
   bool add_map_loop(const loop::LoopCandidateRecord& r);
+  // After a reset, within resume_window_s of the new segment's first pose: where its frame lies in the map if
+  // the map's last pose is carried across the reset by the segment's first motion (LoopCloser::set_resume_guess).
+  std::optional<SE3> resume_guess(TimeNs query_t_ns) const;
 
   loop::LoopClosureConfig config_;
   std::shared_ptr<const Vocabulary> vocabulary_;

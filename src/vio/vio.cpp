@@ -108,14 +108,14 @@ void Vio::initialize_moving(const FrontendOutput& frame) {
       Vec3::Constant(config_.moving_velocity_sigma_m_s), Vec3::Constant(config_.prior_gyro_bias_sigma_rad_s),
       Vec3::Constant(config_.prior_accel_bias_sigma_m_s2);
   alignment_frames_.clear();
-  // After a loss the LiDAR side maps without the VIO until its poses resume: they resume at the window's start.
-  const bool backfill = restarting_;
+  // The LiDAR side maps no sweep before the VIO's poses begin (and after a loss, maps without them): the poses
+  // are published from the window's first frame on, as they would have been live.
   const std::vector<ImuSample> samples = imu_;
   begin_window(*a.state, sigma, window.front());
   propagator_.reset(smoother_.newest(), imu_);
   publish_state(window.front(), 0.0);
   for (std::size_t k = 1; k < window.size(); ++k) {
-    if (backfill) publish_imu_poses(samples, window[k].t_ns);
+    publish_imu_poses(samples, window[k].t_ns);
     add_frame(window[k]);
   }
 }

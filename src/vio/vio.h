@@ -94,7 +94,7 @@ class Vio {
   // Starts the smoother's window at x0; after a loss, continues from the last published state's yaw and position.
   void begin_window(const NavState& x0, const Vec15& prior_sigma, const FrontendOutput& frame);
   void declare_lost(const FrontendOutput& frame, VioLoss reason);
-  // The IMU-rate poses of samples after the newest state up to t_ns (a restarted window's, once it aligned).
+  // The IMU-rate poses of samples after the newest state up to t_ns (an aligned window's, once it aligned).
   void publish_imu_poses(const std::vector<ImuSample>& samples, TimeNs t_ns);
   // Keeps the samples from the last one at or before t_ns on.
   void keep_imu_from(TimeNs t_ns);

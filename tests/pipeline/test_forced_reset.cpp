@@ -83,6 +83,36 @@ TEST_F(ForcedReset, EachSegmentJoinsTheMapWithinSecondsNearTheTruth) {
   EXPECT_GT(final_poses.back().t_ns, segments[2]["start_t_ns"].as<TimeNs>());
 }
 
+// With no loop verified by vision at all (descriptor matching made impossible), a segment still joins the map
+// where the previous one ended: the map's last pose carried across the reset by the segment's first motion,
+// verified by ICP of the key scans; without that resume guess it never joins.
+TEST_F(ForcedReset, WithoutVisionTheResumeGuessVerifiedByIcpJoinsTheMap) {
+  const fs::path dir = test::temp_dir();
+  const std::string blind = "loop_closure:\n  min_time_gap_s: 4.0\n  min_descriptor_matches: 100000\n";
+  std::ofstream(dir / "blind.yaml") << blind;
+  std::ofstream(dir / "blind_no_resume.yaml") << blind << "  resume_window_s: 0\n";
+  const auto join = [&](const std::string& config) {
+    const test::CliResult r = test::run_cli("run --mode vil " + data() + " --config " + (dir / config).string() +
+                                            " --reset-at 6 --out " + (dir / config).string() + ".run");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return YAML::LoadFile((dir / config).string() + ".run/segments.json")["segments"][1];
+  };
+  const YAML::Node resumed = join("blind.yaml");
+  ASSERT_TRUE(resumed["relocalized"].as<bool>());
+  const double join_s = ns_to_s(resumed["relocalized_t_ns"].as<TimeNs>() - resumed["start_t_ns"].as<TimeNs>());
+  EXPECT_LT(join_s, 3.0);
+  const fs::path json = dir / "joins.json";
+  const test::CliResult e = test::run_cli("eval-segments --run " + (dir / "blind.yaml.run").string() + " --gt " +
+                                          data() + " --json " + json.string());
+  ASSERT_EQ(e.exit_code, 0) << e.output;
+  const YAML::Node j = YAML::LoadFile(json.string())["segments"][0];
+  std::printf("joined by the resume guess after %.2f s: junction %.3f m / %.2f deg\n", join_s,
+              j["junction_translation_m"].as<double>(), j["junction_rotation_deg"].as<double>());
+  EXPECT_LT(j["junction_translation_m"].as<double>(), 0.15) << e.output;
+  EXPECT_LT(j["junction_rotation_deg"].as<double>(), 1.5) << e.output;
+  EXPECT_FALSE(join("blind_no_resume.yaml")["relocalized"].as<bool>());
+}
+
 TEST_F(ForcedReset, AResetThatCannotRelocalizeIsRefusedBeforeAnythingIsWritten) {
   const fs::path dir = test::temp_dir();
   const auto refused = [&](const std::string& args, const std::string& named) {
