@@ -2,8 +2,10 @@
 // offline and deterministic, or with the data released on the wall clock (docs/pipeline.md).
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/progress.h"
@@ -103,30 +105,35 @@ void print_summary(const OfflineRunResult& r, TimeNs start_t_ns) {
   }
 }
 
-// --load-map with --save-map: a map holds one clock, so only a recording that starts after the map's last pose
-// extends it (recordings on a robot's wall clock do). Checked before the run, so nothing is written otherwise.
-void check_map_extensible(const std::string& map_dir, const DatasetReader& reader) {
-  const Trajectory poses = loop::load_map(map_dir).poses;
+// --save-map: the map the run extends, loaded and checked before the run so that nothing is written otherwise.
+// Empty without --load-map. A map holds one clock, so only a recording that starts after the map's last pose
+// extends it (recordings on a robot's wall clock do).
+std::optional<loop::SavedMap> load_extensible_map(const std::string& map_dir, const OfflineRunConfig& config,
+                                                  const DatasetReader& reader) {
+  if (map_dir.empty()) return std::nullopt;
+  loop::SavedMap map =
+      load_checked_map(map_dir, loop::vocabulary_identity(vocabulary_file(config.vocabulary)), reader.calibration());
+  const Trajectory& poses = map.poses;
   if (!poses.empty() && reader.summary().start_t_ns <= poses.back().t_ns) {
     throw InputError("--save-map", "the dataset starts at " + std::to_string(reader.summary().start_t_ns) +
                                        " ns, not after the last pose of " + map_dir + " (" +
                                        std::to_string(poses.back().t_ns) +
                                        " ns): a map holds one clock, so only a later recording extends it");
   }
+  return map;
 }
 
 // --save-map: the run's key frames and final poses, after the loaded map's when there is one (the loaded map
 // extended: the run joins it only once re-localized, its poses then in the map's frame; docs/loop.md).
 void save_run_map(const std::string& dir, const OfflineRunConfig& config, const DatasetReader& reader,
-                  const OfflineRunResult& result) {
-  const std::uint64_t vocabulary_id = loop::vocabulary_identity(vocabulary_file(config.vocabulary));
+                  const OfflineRunResult& result, std::optional<loop::SavedMap> loaded) {
   loop::SavedMap map;
-  if (config.load_map.empty()) {
+  if (loaded) {
+    map = std::move(*loaded);
+  } else {
     RigCalibration rig = reader.calibration();
     if (result.time_offset) rig.cam_time_offset_ns = s_to_ns(result.time_offset->offset_s);
-    map = empty_map(rig, vocabulary_id);
-  } else {
-    map = load_checked_map(config.load_map, vocabulary_id, reader.calibration());
+    map = empty_map(rig, loop::vocabulary_identity(vocabulary_file(config.vocabulary)));
   }
   const std::size_t before = map.key_frames.size();
   if (!join_map(map, *result.loop)) {
@@ -172,14 +179,15 @@ vilslam::cli::Command reg("run", "Run the offline pipeline on a dataset and writ
     config.reset_at_s = o->reset_at_s;
     config.realtime.speed = o->realtime_speed;
     const auto reader = open_dataset(o->dataset, vilslam::cli::dataset_options(*bag_args));
-    if (!o->save_map.empty() && !config.load_map.empty()) check_map_extensible(config.load_map, *reader);
+    std::optional<loop::SavedMap> extended;
+    if (!o->save_map.empty()) extended = load_extensible_map(config.load_map, config, *reader);
     OfflineRunResult result;
     {
       Progress progress("run", 1.0);
       result = run_offline(*reader, config, [&progress](double fraction) { progress.update(fraction); });
     }
     write_run_outputs(o->out_dir, config, result);
-    if (!o->save_map.empty()) save_run_map(o->save_map, config, *reader, result);
+    if (!o->save_map.empty()) save_run_map(o->save_map, config, *reader, result, std::move(extended));
     print_summary(result, reader->summary().start_t_ns);
     if (!config.load_map.empty() && !result.loop->relocalized_t_ns) {
       std::printf("not re-localized in %s: every pose is in the run's own frame\n", config.load_map.c_str());

@@ -79,6 +79,10 @@ double orthonormality_error(const Mat3& R) {
   return std::max(ortho, std::abs(R.determinant() - 1.0));
 }
 
+double yaw_rad(const Mat3& R) { return std::atan2(R(1, 0), R(0, 0)); }
+
+Mat3 rot_z(double yaw) { return Eigen::AngleAxisd(yaw, Vec3::UnitZ()).toRotationMatrix(); }
+
 }  // namespace so3
 
 // Exp of se(3): t = Jl(phi) rho (Barfoot, State Estimation for Robotics, eq. 7.85).

@@ -30,6 +30,11 @@ Mat3 left_jacobian_inv(const Vec3& phi);
 Mat3 project(const Mat3& M);
 // Largest deviation of R^T R from identity and |det R - 1|: 0 for a rotation.
 double orthonormality_error(const Mat3& R);
+// Heading: the angle about z in R's ZYX (yaw, pitch, roll) decomposition, the one gauge a gravity-aligned frame
+// leaves free besides position.
+double yaw_rad(const Mat3& R);
+// The rotation by yaw about z.
+Mat3 rot_z(double yaw);
 
 }  // namespace so3
 

@@ -26,10 +26,7 @@ std::optional<SE3> LivePropagator::add(const ImuSample& sample) {
   }
   samples_.push_back(sample);
   if (anchor) {
-    // Keep the samples from the last one at or before the anchor on, and integrate them from it.
-    const auto first_after = std::upper_bound(samples_.begin(), samples_.end(), anchor->t_ns,
-                                              [](TimeNs t, const ImuSample& s) { return t < s.t_ns; });
-    samples_.erase(samples_.begin(), first_after == samples_.begin() ? first_after : first_after - 1);
+    drop_samples_before(samples_, anchor->t_ns);
     propagator_.reset(*anchor, samples_);
     anchor_t_ns_ = anchor->t_ns;
   } else if (anchor_t_ns_) {

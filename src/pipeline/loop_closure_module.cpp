@@ -162,7 +162,7 @@ std::optional<SE3> LoopClosureModule::resume_guess(TimeNs query_t_ns) const {
   // Both frames are the VIO's, gravity-aligned: the guess keeps its yaw only, not the tilt the first poses of a
   // just-aligned window still carry.
   const Mat3& R = T_map_run.rotation();
-  const Mat3 R_yaw = Eigen::AngleAxisd(std::atan2(R(1, 0), R(0, 0)), Vec3::UnitZ()).toRotationMatrix();
+  const Mat3 R_yaw = so3::rot_z(so3::yaw_rad(R));
   return SE3(R_yaw, T_map_run.translation());
 }
 

@@ -27,10 +27,9 @@ Initialization static_initialization(const std::vector<ImuSample>& samples, Time
 
   // At rest the specific force is R_W_I^T (0, 0, g): rotate it onto +z, then remove the yaw (ZYX).
   const Mat3 R_tilt = Quat::FromTwoVectors(accel_mean, Vec3::UnitZ()).toRotationMatrix();
-  const double yaw = std::atan2(R_tilt(1, 0), R_tilt(0, 0));
   Initialization init;
   init.state.t_ns = t_ns;
-  init.state.R_W_I = Eigen::AngleAxisd(-yaw, Vec3::UnitZ()).toRotationMatrix() * R_tilt;
+  init.state.R_W_I = so3::rot_z(-so3::yaw_rad(R_tilt)) * R_tilt;
   init.is_static = accel_std <= config.max_accel_std_m_s2 && gyro_std <= config.max_gyro_std_rad_s;
   // Moving (a reset mid-run), the mean rate is the motion's, not the bias: start from 0 and let the prior hold it.
   init.state.bias_gyro_rad_s = init.is_static ? gyro_mean : Vec3::Zero();

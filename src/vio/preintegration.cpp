@@ -92,8 +92,7 @@ double integrate_samples(const std::vector<ImuSample>& samples, TimeNs t0_ns, Ti
   // Step boundaries: t0, every sample time strictly inside (t0, t1), t1.
   TimeNs a = t0_ns;
   double gap_s = 0;
-  auto it = std::upper_bound(samples.begin(), samples.end(), t0_ns,
-                             [](TimeNs t, const ImuSample& s) { return t < s.t_ns; });
+  auto it = first_sample_after(samples, t0_ns);
   while (a < t1_ns) {
     const TimeNs b = (it != samples.end() && it->t_ns < t1_ns) ? it->t_ns : t1_ns;
     const ImuSample mid = sample_at(samples, a + (b - a) / 2);
@@ -110,6 +109,15 @@ double integrate_samples(const std::vector<ImuSample>& samples, TimeNs t0_ns, Ti
     if (it != samples.end()) ++it;
   }
   return gap_s;
+}
+
+std::vector<ImuSample>::const_iterator first_sample_after(const std::vector<ImuSample>& samples, TimeNs t_ns) {
+  return std::upper_bound(samples.begin(), samples.end(), t_ns, [](TimeNs t, const ImuSample& s) { return t < s.t_ns; });
+}
+
+void drop_samples_before(std::vector<ImuSample>& samples, TimeNs t_ns) {
+  const auto first_after = first_sample_after(samples, t_ns);
+  if (first_after != samples.begin()) samples.erase(samples.begin(), first_after - 1);
 }
 
 }  // namespace vilslam

@@ -71,4 +71,9 @@ class Preintegration {
 double integrate_samples(const std::vector<ImuSample>& samples, TimeNs t0_ns, TimeNs t1_ns, Preintegration& preint,
                        const ImuGapModel& gap = {});
 
+// The first of the time-sorted samples after t_ns (end() when none is).
+std::vector<ImuSample>::const_iterator first_sample_after(const std::vector<ImuSample>& samples, TimeNs t_ns);
+// Drops the samples before the last one at or before t_ns: what integrating from t_ns on still needs.
+void drop_samples_before(std::vector<ImuSample>& samples, TimeNs t_ns);
+
 }  // namespace vilslam

@@ -64,7 +64,7 @@ void Vio::add_frame(const FrontendOutput& frame) {
     declare_lost(frame, loss);
     return;
   }
-  keep_imu_from(smoother_.newest().t_ns);
+  drop_samples_before(imu_, smoother_.newest().t_ns);
   propagator_.reset(smoother_.newest(), imu_);
   // O stays continuous: the new propagation at the join time maps to where the old one was.
   T_O_W_ = T_O_W_ * T_W_I_old * propagator_.state_at(join_t_ns).T_W_I().inverse();
@@ -84,7 +84,7 @@ void Vio::start(const FrontendOutput& frame) {
       Vec3::Constant(init.is_static ? config_.prior_velocity_sigma_m_s : config_.moving_velocity_sigma_m_s),
       Vec3::Constant(config_.prior_gyro_bias_sigma_rad_s), Vec3::Constant(config_.prior_accel_bias_sigma_m_s2);
   begin_window(init.state, sigma, frame);
-  keep_imu_from(smoother_.newest().t_ns);
+  drop_samples_before(imu_, smoother_.newest().t_ns);
   propagator_.reset(smoother_.newest(), imu_);
   publish_state(frame, 0.0);
 }
@@ -100,7 +100,7 @@ void Vio::initialize_moving(const FrontendOutput& frame) {
                                                           config_.smoother.gravity_m_s2, config_.initializer.alignment);
   if (!a.state) {
     alignment_frames_.pop_front();
-    keep_imu_from(alignment_frames_.front().t_ns);
+    drop_samples_before(imu_, alignment_frames_.front().t_ns);
     return;
   }
   Vec15 sigma;
@@ -123,8 +123,7 @@ void Vio::initialize_moving(const FrontendOutput& frame) {
 void Vio::publish_imu_poses(const std::vector<ImuSample>& samples, TimeNs t_ns) {
   // As they would have been published live: propagated from the newest state, sample by sample.
   const NavState& x = smoother_.newest();
-  const auto first_after = std::upper_bound(samples.begin(), samples.end(), x.t_ns,
-                                            [](TimeNs t, const ImuSample& s) { return t < s.t_ns; });
+  const auto first_after = first_sample_after(samples, x.t_ns);
   Propagator propagator(calib_.imu, smoother_.gravity_W());
   propagator.reset(x, std::vector<ImuSample>(samples.begin(), first_after));
   for (auto it = first_after; it != samples.end() && it->t_ns <= t_ns; ++it) {
@@ -141,8 +140,7 @@ void Vio::begin_window(const NavState& x0, const Vec15& prior_sigma, const Front
     // state, moved on at the aligned velocity (the lost window's own is not trusted), so the output does not jump
     // (the error that state had stays).
     const NavState& last = latest_state_->state;
-    const auto yaw = [](const Mat3& R) { return std::atan2(R(1, 0), R(0, 0)); };
-    const Mat3 R_shift = Eigen::AngleAxisd(yaw(last.R_W_I) - yaw(x0.R_W_I), Vec3::UnitZ()).toRotationMatrix();
+    const Mat3 R_shift = so3::rot_z(so3::yaw_rad(last.R_W_I) - so3::yaw_rad(x0.R_W_I));
     x.R_W_I = R_shift * x0.R_W_I;
     x.v_W_m_s = R_shift * x0.v_W_m_s;
     x.p_W_I = last.p_W_I + x.v_W_m_s * ns_to_s(x0.t_ns - last.t_ns);
@@ -159,14 +157,8 @@ void Vio::declare_lost(const FrontendOutput& frame, VioLoss reason) {
   smoother_.reset();
   loss_check_.reset();
   restarting_ = true;
-  keep_imu_from(frame.t_ns);
+  drop_samples_before(imu_, frame.t_ns);
   if (on_lost_) on_lost_(event);
-}
-
-void Vio::keep_imu_from(TimeNs t_ns) {
-  const auto first_after =
-      std::upper_bound(imu_.begin(), imu_.end(), t_ns, [](TimeNs t, const ImuSample& s) { return t < s.t_ns; });
-  if (first_after != imu_.begin()) imu_.erase(imu_.begin(), first_after - 1);
 }
 
 void Vio::publish_state(const FrontendOutput& frame, double imu_gap_s) {

@@ -96,8 +96,6 @@ class Vio {
   void declare_lost(const FrontendOutput& frame, VioLoss reason);
   // The IMU-rate poses of samples after the newest state up to t_ns (an aligned window's, once it aligned).
   void publish_imu_poses(const std::vector<ImuSample>& samples, TimeNs t_ns);
-  // Keeps the samples from the last one at or before t_ns on.
-  void keep_imu_from(TimeNs t_ns);
 
   VioConfig config_;
   RigCalibration calib_;

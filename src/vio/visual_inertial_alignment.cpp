@@ -140,7 +140,7 @@ VisualInertialAlignment align_visual_inertial(const std::vector<FrontendOutput>&
   // W: z up along -g, yaw of the first body pose 0 (as the static initialization).
   const Mat3 R_tilt = Quat::FromTwoVectors(-g_c, Vec3::UnitZ()).toRotationMatrix();
   const Mat3 R_tilt_I = R_tilt * R_c_I[0];
-  const Mat3 R_W_c = Eigen::AngleAxisd(-std::atan2(R_tilt_I(1, 0), R_tilt_I(0, 0)), Vec3::UnitZ()).toRotationMatrix() * R_tilt;
+  const Mat3 R_W_c = so3::rot_z(-so3::yaw_rad(R_tilt_I)) * R_tilt;
   NavState x;
   x.t_ns = frames[0].t_ns;
   x.R_W_I = R_W_c * R_c_I[0];

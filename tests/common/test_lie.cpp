@@ -55,6 +55,14 @@ TEST(So3, ProjectGivesRotation) {
   EXPECT_LT(so3::orthonormality_error(so3::project(M)), 1e-12);
 }
 
+TEST(So3, YawIsTheZAngleOfTheZyxDecomposition) {
+  for (const double yaw : {-3.0, -0.4, 0.0, 1.2, 3.1}) {
+    const Mat3 R = so3::rot_z(yaw) * so3::exp(Vec3(0, 0.3, 0)) * so3::exp(Vec3(-0.2, 0, 0));  // yaw, pitch, roll
+    EXPECT_NEAR(so3::yaw_rad(R), yaw, 1e-12);
+    EXPECT_NEAR(so3::yaw_rad(so3::rot_z(-yaw) * R), 0.0, 1e-12);
+  }
+}
+
 TEST(Se3, ExpLogRoundTripAndComposition) {
   std::mt19937 rng(4);
   for (int i = 0; i < 50; ++i) {

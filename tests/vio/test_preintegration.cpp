@@ -122,5 +122,23 @@ TEST(Preintegration, CovarianceMatchesMonteCarlo) {
   }
 }
 
+TEST(ImuSamples, DroppingBeforeATimeKeepsTheSampleWhoseIntervalHoldsIt) {
+  std::vector<ImuSample> samples;
+  for (const TimeNs t : {10, 20, 30, 40}) samples.push_back(ImuSample{t, Vec3::Zero(), Vec3::Zero()});
+  EXPECT_EQ(first_sample_after(samples, 20)->t_ns, 30);
+  EXPECT_EQ(first_sample_after(samples, 5)->t_ns, 10);
+  EXPECT_TRUE(first_sample_after(samples, 40) == samples.end());
+  std::vector<ImuSample> kept = samples;
+  drop_samples_before(kept, 25);  // 20 stays: integrating from 25 starts in [20, 30]
+  ASSERT_EQ(kept.size(), 3u);
+  EXPECT_EQ(kept.front().t_ns, 20);
+  kept = samples;
+  drop_samples_before(kept, 30);
+  EXPECT_EQ(kept.front().t_ns, 30);
+  kept = samples;
+  drop_samples_before(kept, 5);  // nothing at or before: all kept
+  EXPECT_EQ(kept.size(), 4u);
+}
+
 }  // namespace
 }  // namespace vilslam

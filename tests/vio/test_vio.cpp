@@ -265,7 +265,7 @@ TEST(Vio, StaticInitializationLevelsGravity) {
   EXPECT_EQ(init.samples, 200);
   // Gravity direction matches, yaw is zero, gyro bias is the mean rate.
   EXPECT_LT((init.state.R_W_I.transpose() * Vec3::UnitZ() - R_W_I.transpose() * Vec3::UnitZ()).norm(), 1e-9);
-  EXPECT_NEAR(std::atan2(init.state.R_W_I(1, 0), init.state.R_W_I(0, 0)), 0.0, 1e-9);
+  EXPECT_NEAR(so3::yaw_rad(init.state.R_W_I), 0.0, 1e-9);
   EXPECT_LT((init.state.bias_gyro_rad_s - Vec3(0.01, -0.02, 0.005)).norm(), 1e-12);
 }
 
