@@ -71,7 +71,7 @@ void LidarMapper::relocalize(const SE3& T_W_L_last, const std::vector<PosedFeatu
 }
 
 LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior,
-                                        const std::function<SE3(TimeNs)>& T_O_I_dewarp) {
+                                        const std::function<SE3(TimeNs)>& T_O_I_dewarp, double prior_tilt_sigma_rad) {
   const auto start = std::chrono::steady_clock::now();
   if (scan.points.empty()) throw InputError("lidar scan", "empty scan at t_ns " + std::to_string(scan.t_ns));
   const TimeNs end_t_ns = scan.end_t_ns();
@@ -106,7 +106,10 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
   LidarMappingResult out;
   out.t_ns = end_t_ns;
   // The prior's tilt (its up direction in L; VIO: referenced to gravity), for the registration's tilt prior.
-  if (T_W_L_prior_end) out.up_L_prior = T_W_L_prior_end->rotation().transpose() * Vec3::UnitZ();
+  if (T_W_L_prior_end) {
+    out.up_L_prior = T_W_L_prior_end->rotation().transpose() * Vec3::UnitZ();
+    out.up_L_prior_sigma_rad = prior_tilt_sigma_rad;
+  }
   if (!previous_) {
     // The first scan defines the map frame: the VIO world frame when a prior is given.
     out.T_W_L = T_W_L_prior_end.value_or(SE3());
@@ -115,7 +118,8 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
     // Paper: L*_{k+1} = L_k T_trans.
     const SE3 T_trans = motion_since_previous(end_t_ns, T_W_L_prior_end);
     RegistrationResult r =
-        register_scan(features, map_, previous_->T_W_L * T_trans, config_.lidar.registration, out.up_L_prior);
+        register_scan(features, map_, previous_->T_W_L * T_trans, config_.lidar.registration, out.up_L_prior,
+                      out.up_L_prior_sigma_rad);
     if (lidar_only_refine) r = reregister_lidar_only(raw, end_t_ns, r.T_W_L, features);
     out.T_W_L = r.T_W_L;
     out.degenerate = r.degeneracy.degenerate();

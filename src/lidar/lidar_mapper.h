@@ -34,6 +34,7 @@ struct LidarMappingResult {
   bool degenerate = false;             // some direction was below the degeneracy threshold
   std::vector<Vec6> degenerate_directions;  // those directions, unit [rho; phi] in L (the prior's motion kept)
   std::optional<Vec3> up_L_prior;      // the prior's up direction R_W_L^T e_z at t_ns (VIO: against gravity), if any
+  double up_L_prior_sigma_rad = 0.0;   // the prior's tilt standard deviation, when known (process())
   Vec6 information_eigenvalues = Vec6::Zero();  // of J^T J at the solution, ascending
   double rms_residual_m = 0.0;         // registration fit (RegistrationResult); 0 for the first sweep
   double matched_fraction = 0.0;
@@ -58,9 +59,11 @@ class LidarMapper {
   // T_W_I_prior: IMU-rate VIO pose at any time covering [scan.t_ns, scan end]; an empty function gives
   // LiDAR-only mapping. T_O_I_dewarp: when given, the sweep is dewarped with its relative poses instead
   // (the VIO's jump-free IMU motion, vio/vio.h); T_W_I_prior still gives the motion between sweeps.
-  // Throws InputError on an empty scan or a scan ending before the previous one.
+  // prior_tilt_sigma_rad: the prior's tilt standard deviation at the scan end when known (the VIO's), which
+  // weakens the registration's tilt prior (lidar/registration.h). Throws InputError on an empty scan or a scan
+  // ending before the previous one.
   LidarMappingResult process(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior,
-                             const std::function<SE3(TimeNs)>& T_O_I_dewarp = {});
+                             const std::function<SE3(TimeNs)>& T_O_I_dewarp = {}, double prior_tilt_sigma_rad = 0.0);
 
   const FeatureMap& map() const { return map_; }
   // The last sweep's features as registered: dewarped to its end, in its LiDAR frame.

@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace vilslam::lidar {
@@ -33,9 +34,10 @@ struct TiltPrior {
   double weight;
 };
 
-std::optional<TiltPrior> tilt_prior(const std::optional<Vec3>& up_L_prior, const RegistrationConfig& config) {
+std::optional<TiltPrior> tilt_prior(const std::optional<Vec3>& up_L_prior, double up_L_prior_sigma_rad,
+                                   const RegistrationConfig& config) {
   if (!up_L_prior || config.tilt_prior_sigma_rad <= 0.0) return std::nullopt;
-  const double ratio = config.loss_scale_m / config.tilt_prior_sigma_rad;
+  const double ratio = config.loss_scale_m / std::max(config.tilt_prior_sigma_rad, up_L_prior_sigma_rad);
   return TiltPrior{*up_L_prior, ratio * ratio};
 }
 
@@ -163,8 +165,9 @@ std::vector<Vec3> positions(const std::vector<FeaturePoint>& points, double leaf
 }  // namespace
 
 RegistrationResult register_scan(const FeatureScan& features_L, const FeatureMap& map, const SE3& T_W_L_init,
-                                 const RegistrationConfig& config, const std::optional<Vec3>& up_L_prior) {
-  const std::optional<TiltPrior> tilt = tilt_prior(up_L_prior, config);
+                                 const RegistrationConfig& config, const std::optional<Vec3>& up_L_prior,
+                                 double up_L_prior_sigma_rad) {
+  const std::optional<TiltPrior> tilt = tilt_prior(up_L_prior, up_L_prior_sigma_rad, config);
   const std::vector<Vec3> edges_L = positions(features_L.edges, config.source_edge_leaf_m);
   const std::vector<Vec3> surfaces_L = positions(features_L.surfaces, config.source_surface_leaf_m);
   RegistrationResult result;

@@ -52,8 +52,10 @@ struct RegistrationResult {
 // up_L_prior: the world's up e_z in the LiDAR frame at the scan end from a gravity-referenced motion prior
 // (R_W_L_prior^T e_z); with config.tilt_prior_sigma_rad > 0 it adds the tilt prior, whose information also
 // enters the degeneracy analysis (so a tilt the map does not constrain follows the prior, not the initial guess).
+// up_L_prior_sigma_rad: the prior's own tilt standard deviation when known (the VIO's covariance); the tilt
+// prior's sigma is the larger of it and config.tilt_prior_sigma_rad.
 RegistrationResult register_scan(const FeatureScan& features_L, const FeatureMap& map, const SE3& T_W_L_init,
                                  const RegistrationConfig& config,
-                                 const std::optional<Vec3>& up_L_prior = std::nullopt);
+                                 const std::optional<Vec3>& up_L_prior = std::nullopt, double up_L_prior_sigma_rad = 0.0);
 
 }  // namespace vilslam::lidar

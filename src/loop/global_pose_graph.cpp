@@ -56,12 +56,13 @@ std::size_t GlobalPoseGraph::add_odometry(TimeNs t_ns, const SE3& T_prev_cur,
   return poses_.size() - 1;
 }
 
-void GlobalPoseGraph::set_up_direction(std::size_t index, const Vec3& up_L) {
-  if (index >= poses_.size() || !up_L.allFinite() || up_L.norm() < 1e-9) {
+void GlobalPoseGraph::set_up_direction(std::size_t index, const Vec3& up_L, double sigma_rad) {
+  if (index >= poses_.size() || !up_L.allFinite() || up_L.norm() < 1e-9 || !(sigma_rad >= 0.0) ||
+      !std::isfinite(sigma_rad)) {
     throw std::invalid_argument("global pose graph: up direction of pose " + std::to_string(index) +
-                                " is not finite and non-zero or the pose is not added");
+                                " is not finite and non-zero, its sigma not finite and >= 0, or the pose is not added");
   }
-  up_L_[index] = up_L.normalized();
+  up_L_[index] = MeasuredUp{up_L.normalized(), std::max(config_.tilt_sigma_rad, sigma_rad)};
 }
 
 void GlobalPoseGraph::add_loop(std::size_t from_index, std::size_t to_index, const SE3& T_from_to,
@@ -154,7 +155,7 @@ CorrectionSummary GlobalPoseGraph::optimize() {
   }
   if (config_.tilt_sigma_rad > 0.0) {
     for (std::size_t k = map_loops_.empty() ? 1 : 0; k < anchors.size(); ++k) {  // a fixed first pose needs none
-      if (up_L_[anchors[k]]) reduced.add_tilt({first + k, *up_L_[anchors[k]], config_.tilt_sigma_rad});
+      if (const auto& up = up_L_[anchors[k]]) reduced.add_tilt({first + k, up->up_L, up->sigma_rad});
     }
   }
   PoseGraphOptions options;

@@ -61,8 +61,9 @@ class GlobalPoseGraph {
   // not constrain (lidar::LidarMappingResult); each adds config.degenerate_sigma^2 v v^T to the step's covariance.
   std::size_t add_odometry(TimeNs t_ns, const SE3& T_prev_cur, const std::vector<Vec6>& degenerate_directions = {});
   // The pose's up direction R_W_L^T e_z as measured against gravity (the VIO's at the same instant); used when
-  // config.tilt_sigma_rad > 0. Throws std::invalid_argument on a bad index or a non-finite or zero vector.
-  void set_up_direction(std::size_t index, const Vec3& up_L);
+  // config.tilt_sigma_rad > 0, with the larger of that sigma and the measurement's own (sigma_rad, the VIO's
+  // tilt standard deviation when known). Throws std::invalid_argument on a bad index or a non-finite or zero vector.
+  void set_up_direction(std::size_t index, const Vec3& up_L, double sigma_rad = 0.0);
   // A loop factor measuring T_from_to = (T_W_from)^-1 T_W_to; throws std::invalid_argument on a bad index
   // or an information matrix that is not symmetric positive definite.
   void add_loop(std::size_t from_index, std::size_t to_index, const SE3& T_from_to, const Mat6& information);
@@ -93,7 +94,11 @@ class GlobalPoseGraph {
   Trajectory poses_;
   std::vector<SE3> odometry_;  // odometry_[i] = measured T_{i-1,i}; odometry_[0] unused
   Mat6List step_covariances_;  // of odometry_[i]
-  std::vector<std::optional<Vec3>> up_L_;  // measured up direction per pose
+  struct MeasuredUp {
+    Vec3 up_L;
+    double sigma_rad;  // of the tilt factor
+  };
+  std::vector<std::optional<MeasuredUp>> up_L_;  // measured up direction per pose
   std::vector<RelativePoseConstraint> loops_;
   struct MapLoop {
     SE3 T_W_from;

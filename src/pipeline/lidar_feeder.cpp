@@ -1,15 +1,18 @@
 #include "pipeline/lidar_feeder.h"
 
+#include <algorithm>
+
 #include "lidar/azimuth_times.h"
 
 namespace vilslam {
 
 LidarFeeder::LidarFeeder(const lidar::LidarMapperConfig& config, const RigCalibration& calib,
                          const Trajectory* imu_poses, const Trajectory* imu_motion,
+                         const std::vector<double>* imu_tilt_sigma_rad,
                          std::vector<lidar::LidarMappingResult>* results, LoopClosureModule* loop)
     : mapper_(config, calib.T_I_L), offset_ns_(calib.lidar_time_offset_ns), lidar_(calib.lidar),
-      dewarp_(config.dewarp), imu_poses_(imu_poses),
-      imu_motion_(imu_motion), results_(results), loop_(loop) {}
+      dewarp_(config.dewarp), imu_poses_(imu_poses), imu_motion_(imu_motion),
+      imu_tilt_sigma_rad_(imu_tilt_sigma_rad), results_(results), loop_(loop) {}
 
 void LidarFeeder::scan(LidarScan scan) {
   scan.t_ns += offset_ns_;
@@ -45,21 +48,28 @@ void LidarFeeder::poses_advanced() {
     } else {
       std::function<SE3(TimeNs)> T_O_I;
       if (imu_motion_) T_O_I = [this](TimeNs t_ns) { return pose_at(*imu_motion_, t_ns); };
-      map(scan, [this](TimeNs t_ns) { return pose_at(*imu_poses_, t_ns); }, T_O_I);
+      // The VIO's tilt standard deviation at the first IMU-rate pose from the sweep's end on.
+      double tilt_sigma_rad = 0.0;
+      if (imu_tilt_sigma_rad_) {
+        const auto at_end = std::lower_bound(imu_poses_->begin(), imu_poses_->end(), scan.end_t_ns(),
+                                             [](const TimedPose& p, TimeNs t) { return p.t_ns < t; });
+        tilt_sigma_rad = (*imu_tilt_sigma_rad_)[static_cast<std::size_t>(at_end - imu_poses_->begin())];
+      }
+      map(scan, [this](TimeNs t_ns) { return pose_at(*imu_poses_, t_ns); }, T_O_I, tilt_sigma_rad);
     }
     waiting_.pop_front();
   }
 }
 
 void LidarFeeder::map(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior,
-                      const std::function<SE3(TimeNs)>& T_O_I_dewarp) {
+                      const std::function<SE3(TimeNs)>& T_O_I_dewarp, double prior_tilt_sigma_rad) {
   // A loop correction that arrived since the last sweep comes first (paper, "Re-localization").
   if (loop_) {
     if (const auto correction = loop_->take_correction()) {
       mapper_.relocalize(correction->T_W_L_last, correction->key_scans);
     }
   }
-  results_->push_back(mapper_.process(scan, T_W_I_prior, T_O_I_dewarp));
+  results_->push_back(mapper_.process(scan, T_W_I_prior, T_O_I_dewarp, prior_tilt_sigma_rad));
   if (loop_) loop_->scan_mapped(results_->back(), mapper_.last_features());
 }
 

@@ -18,11 +18,12 @@ namespace vilslam {
 class LidarFeeder {
  public:
   // imu_poses: the VIO's IMU-rate poses as they grow (vil), or nullptr for LiDAR-only mapping; imu_motion:
-  // the same samples' jump-free poses T_O_I (vio/vio.h), which dewarp the sweeps, or nullptr.
+  // the same samples' jump-free poses T_O_I (vio/vio.h), which dewarp the sweeps, or nullptr; imu_tilt_sigma_rad:
+  // the same samples' tilt standard deviations (VioImuOutput), which weigh the tilt priors, or nullptr.
   // loop: the loop closure module, or nullptr.
   LidarFeeder(const lidar::LidarMapperConfig& config, const RigCalibration& calib, const Trajectory* imu_poses,
-              const Trajectory* imu_motion, std::vector<lidar::LidarMappingResult>* results,
-              LoopClosureModule* loop = nullptr);
+              const Trajectory* imu_motion, const std::vector<double>* imu_tilt_sigma_rad,
+              std::vector<lidar::LidarMappingResult>* results, LoopClosureModule* loop = nullptr);
 
   void scan(LidarScan scan);
   // Maps the waiting sweeps that the IMU-rate poses now cover.
@@ -43,7 +44,7 @@ class LidarFeeder {
 
  private:
   void map(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior,
-           const std::function<SE3(TimeNs)>& T_O_I_dewarp);
+           const std::function<SE3(TimeNs)>& T_O_I_dewarp, double prior_tilt_sigma_rad = 0.0);
 
   lidar::LidarMapper mapper_;
   TimeNs offset_ns_;
@@ -51,6 +52,7 @@ class LidarFeeder {
   bool dewarp_;
   const Trajectory* imu_poses_;
   const Trajectory* imu_motion_;
+  const std::vector<double>* imu_tilt_sigma_rad_;
   std::vector<lidar::LidarMappingResult>* results_;
   LoopClosureModule* loop_;
   std::deque<LidarScan> waiting_;

@@ -189,7 +189,7 @@ void LoopClosureModule::scan_mapped(const lidar::LidarMappingResult& mapped, con
                                 ? graph_.add_odometry(mapped.t_ns, last_mapper_T_W_L_->inverse() * mapped.T_W_L,
                                                       mapped.degenerate_directions)
                                 : graph_.add_first_pose(mapped.t_ns, mapped.T_W_L);
-  if (mapped.up_L_prior) graph_.set_up_direction(index, *mapped.up_L_prior);
+  if (mapped.up_L_prior) graph_.set_up_direction(index, *mapped.up_L_prior, mapped.up_L_prior_sigma_rad);
   last_mapper_T_W_L_ = mapped.T_W_L;
   out_.lidar_global.push_back({mapped.t_ns, mapped.T_W_L});  // as published now
   if (!closer_ || pending_) return;

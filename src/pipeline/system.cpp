@@ -27,6 +27,7 @@ double elapsed_ms(std::chrono::steady_clock::time_point start) {
 struct PosesAdvanced {
   Trajectory imu_poses;   // T_W_I
   Trajectory imu_motion;  // T_O_I at the same samples
+  std::vector<double> tilt_sigma_rad;  // VioImuOutput::tilt_sigma_rad at the same samples
 };
 // The VIO lost track after the poses sent so far (vio/vio.h VioLossEvent).
 struct VioLost {};
@@ -69,13 +70,14 @@ class LidarSide {
       }
     }
     lidar_.emplace(config.lidar, calib, with_vio ? &imu_poses_ : nullptr, with_vio ? &imu_motion_ : nullptr,
-                   &result->lidar, loop_ ? &*loop_ : nullptr);
+                   with_vio ? &imu_tilt_sigma_rad_ : nullptr, &result->lidar, loop_ ? &*loop_ : nullptr);
   }
 
   void handle(LidarMessage&& message) {
     if (auto* poses = std::get_if<PosesAdvanced>(&message)) {
       imu_poses_.insert(imu_poses_.end(), poses->imu_poses.begin(), poses->imu_poses.end());
       imu_motion_.insert(imu_motion_.end(), poses->imu_motion.begin(), poses->imu_motion.end());
+      imu_tilt_sigma_rad_.insert(imu_tilt_sigma_rad_.end(), poses->tilt_sigma_rad.begin(), poses->tilt_sigma_rad.end());
       lidar_->poses_advanced();
     } else if (std::holds_alternative<VioLost>(message)) {
       lidar_->vio_lost();
@@ -128,6 +130,7 @@ class LidarSide {
   std::size_t sweeps_done_ = 0;
   Trajectory imu_poses_;
   Trajectory imu_motion_;
+  std::vector<double> imu_tilt_sigma_rad_;
   std::optional<LoopClosureModule> loop_;
   std::optional<LidarFeeder> lidar_;
 };
@@ -160,6 +163,7 @@ class SmootherSide {
     vio_.on_imu_pose([this](const VioImuOutput& p) {
       result_->imu_poses.push_back({p.t_ns, p.T_W_I});
       result_->imu_motion.push_back({p.t_ns, p.T_O_I});
+      unsent_tilt_sigma_rad_.push_back(p.tilt_sigma_rad);
     });
   }
 
@@ -202,6 +206,7 @@ class SmootherSide {
     PosesAdvanced p;
     p.imu_poses.assign(result_->imu_poses.begin() + sent_, result_->imu_poses.end());
     p.imu_motion.assign(result_->imu_motion.begin() + sent_, result_->imu_motion.end());
+    p.tilt_sigma_rad.swap(unsent_tilt_sigma_rad_);
     sent_ = result_->imu_poses.size();
     return p;
   }
@@ -214,6 +219,7 @@ class SmootherSide {
   Shared* shared_;
   std::deque<FrontendOutput> pending_;
   std::size_t sent_ = 0;
+  std::vector<double> unsent_tilt_sigma_rad_;  // of the IMU-rate poses from sent_ on
 };
 
 // The visual frontend (paper: the frontend thread): stereo pairs in, tracked features out; everything else

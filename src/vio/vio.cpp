@@ -38,7 +38,8 @@ void Vio::add_imu(const ImuSample& sample) {
   imu_.push_back(sample);
   if (!initialized() || sample.t_ns <= smoother_.newest().t_ns) return;
   const NavState x = propagator_.add(sample);
-  latest_imu_ = VioImuOutput{x.t_ns, x.T_W_I(), x.v_W_m_s, T_O_W_ * x.T_W_I()};
+  latest_imu_ = VioImuOutput{x.t_ns, x.T_W_I(), x.v_W_m_s, T_O_W_ * x.T_W_I(),
+                             tilt_sigma_rad(smoother_.newest(), smoother_.newest_covariance())};
   if (on_imu_) on_imu_(*latest_imu_);
 }
 
@@ -128,7 +129,7 @@ void Vio::publish_imu_poses(const std::vector<ImuSample>& samples, TimeNs t_ns) 
   propagator.reset(x, std::vector<ImuSample>(samples.begin(), first_after));
   for (auto it = first_after; it != samples.end() && it->t_ns <= t_ns; ++it) {
     const NavState y = propagator.add(*it);
-    latest_imu_ = VioImuOutput{y.t_ns, y.T_W_I(), y.v_W_m_s, T_O_W_ * y.T_W_I()};
+    latest_imu_ = VioImuOutput{y.t_ns, y.T_W_I(), y.v_W_m_s, T_O_W_ * y.T_W_I(), tilt_sigma_rad(x, smoother_.newest_covariance())};
     if (on_imu_) on_imu_(*latest_imu_);
   }
 }

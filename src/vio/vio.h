@@ -61,6 +61,9 @@ struct VioImuOutput {
   SE3 T_W_I;
   Vec3 v_W_m_s = Vec3::Zero();
   SE3 T_O_I;
+  // The tilt standard deviation of the state it was propagated from (tilt_sigma_rad, vio/window_state.h): about
+  // what the VIO's own gravity direction is worth, large after a start while tilt and accel bias are entangled.
+  double tilt_sigma_rad = 0.0;
 };
 
 class Vio {

@@ -1,5 +1,8 @@
 #include "vio/window_state.h"
 
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
 namespace vilslam {
 
 NavState boxplus(const NavState& x, const Vec15& dx) {
@@ -26,6 +29,14 @@ Mat15 boxminus_jacobian(const NavState& x, const NavState& x_lin) {
   Mat15 J = Mat15::Identity();
   J.block<3, 3>(kRot, kRot) = so3::right_jacobian_inv(so3::log(Mat3(x_lin.R_W_I.transpose() * x.R_W_I)));
   return J;
+}
+
+double tilt_sigma_rad(const NavState& x, const Mat15& covariance) {
+  const Mat3 J = so3::hat(x.R_W_I.transpose() * Vec3::UnitZ());
+  const Mat3 up_covariance = J * covariance.block<3, 3>(kRot, kRot) * J.transpose();
+  if (!up_covariance.allFinite()) return 0.0;
+  const double largest = Eigen::SelfAdjointEigenSolver<Mat3>(up_covariance, Eigen::EigenvaluesOnly).eigenvalues()(2);
+  return largest > 0.0 ? std::sqrt(largest) : 0.0;
 }
 
 }  // namespace vilslam

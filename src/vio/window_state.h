@@ -34,4 +34,10 @@ Vec15 boxminus(const NavState& x, const NavState& x_lin);
 // d(x [-] x_lin)/d(dx) at x (identity except Jr^-1 of the rotation difference, Forster eq. (9)).
 Mat15 boxminus_jacobian(const NavState& x, const NavState& x_lin);
 
+// The standard deviation of x's tilt (its roll and pitch against gravity; the larger of the two), rad, from a
+// covariance in the tangent ordering above. The up direction in I, u = R_W_I^T e_z, moves by -hat(u) dphi, which
+// leaves out the yaw (dphi along u), the direction a VIO cannot observe and whose variance is not to be trusted.
+// 0 when the covariance gives no finite value.
+double tilt_sigma_rad(const NavState& x, const Mat15& covariance);
+
 }  // namespace vilslam

@@ -148,4 +148,30 @@ TEST(TiltPrior, HoldsThePitchTheMapLeavesFree) {
 }
 
 }  // namespace
+TEST(TiltPrior, AnUncertainPriorGivesWayToTheMap) {
+  // A room constrains pitch; the gravity-referenced prior is 1 deg off in pitch (a VIO just started again). Told
+  // how uncertain it is (its own tilt sigma, 1 deg), the prior weighs less than at the configured 0.3 deg.
+  const test::Scene scene = test::box_room();
+  FeatureMap map;
+  map.insert(features_at(scene, SE3()), SE3());
+  const SE3 T_W_source(so3::exp(Vec3(0.0, 0.0, 0.05)), Vec3(0.3, -0.2, 0.0));
+  const FeatureScan source = features_at(scene, T_W_source);
+  const Vec3 up_L_wrong = (T_W_source.rotation() * so3::exp(Vec3(0.0, 0.0175, 0.0))).transpose() * Vec3::UnitZ();
+  RegistrationConfig config;
+  config.tilt_prior_sigma_rad = 0.00524;
+  const double truth = pitch_rad(T_W_source), deg = 180.0 / M_PI;
+  const double confident = std::abs(pitch_rad(register_scan(source, map, SE3(), config, up_L_wrong).T_W_L) - truth);
+  const double uncertain =
+      std::abs(pitch_rad(register_scan(source, map, SE3(), config, up_L_wrong, 0.0175).T_W_L) - truth);
+  const double below_config =  // a prior sigma under the configured one changes nothing
+      std::abs(pitch_rad(register_scan(source, map, SE3(), config, up_L_wrong, 0.001).T_W_L) - truth);
+  config.tilt_prior_sigma_rad = 0.0;  // off
+  const double map_alone = std::abs(pitch_rad(register_scan(source, map, SE3(), config, up_L_wrong).T_W_L) - truth);
+  std::cout << "pitch error [deg]: prior at 0.3 deg " << confident * deg << ", at 1 deg " << uncertain * deg
+            << ", no prior " << map_alone * deg << "\n";
+  // The pull towards the wrong prior (beyond the map's own error) shrinks about as the weight does, 1/11.
+  EXPECT_LT(uncertain - map_alone, 0.25 * (confident - map_alone));
+  EXPECT_DOUBLE_EQ(below_config, confident);
+}
+
 }  // namespace vilslam::lidar

@@ -139,5 +139,24 @@ TEST(Smoother, IsDeterministic) {
   EXPECT_EQ(a.newest_covariance, b.newest_covariance);
 }
 
+TEST(TiltSigma, ReadsRollAndPitchAndLeavesOutTheYaw) {
+  NavState x;
+  x.R_W_I = so3::exp(Vec3(0.3, -0.2, 1.0));  // tilted, so the body axes mix world yaw and tilt
+  const Mat3 R_I_W = x.R_W_I.transpose();
+  // Attitude covariance (right perturbation, body frame): 1 deg about the world's x and y, and a yaw variance
+  // that is garbage, huge or negative (a gauge the solver's covariance does not fix).
+  const double sigma = 0.0175;
+  for (const double yaw_variance : {1e4, -3.0}) {
+    Mat3 C_W = Mat3::Zero();
+    C_W.diagonal() << sigma * sigma, 0.25 * sigma * sigma, yaw_variance;
+    Mat15 covariance = Mat15::Zero();
+    covariance.block<3, 3>(kRot, kRot) = R_I_W * C_W * R_I_W.transpose();
+    EXPECT_NEAR(tilt_sigma_rad(x, covariance), sigma, 1e-9);
+  }
+  Mat15 covariance = Mat15::Identity();
+  covariance(0, 1) = std::nan("");
+  EXPECT_EQ(tilt_sigma_rad(x, covariance), 0.0);
+}
+
 }  // namespace
 }  // namespace vilslam
