@@ -127,9 +127,10 @@ void Vio::publish_imu_poses(const std::vector<ImuSample>& samples, TimeNs t_ns) 
   const auto first_after = first_sample_after(samples, x.t_ns);
   Propagator propagator(calib_.imu, smoother_.gravity_W());
   propagator.reset(x, std::vector<ImuSample>(samples.begin(), first_after));
+  const double x_tilt_sigma_rad = tilt_sigma_rad(x, smoother_.newest_covariance());  // one state for all samples
   for (auto it = first_after; it != samples.end() && it->t_ns <= t_ns; ++it) {
     const NavState y = propagator.add(*it);
-    latest_imu_ = VioImuOutput{y.t_ns, y.T_W_I(), y.v_W_m_s, T_O_W_ * y.T_W_I(), tilt_sigma_rad(x, smoother_.newest_covariance())};
+    latest_imu_ = VioImuOutput{y.t_ns, y.T_W_I(), y.v_W_m_s, T_O_W_ * y.T_W_I(), x_tilt_sigma_rad};
     if (on_imu_) on_imu_(*latest_imu_);
   }
 }
