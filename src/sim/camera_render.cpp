@@ -93,8 +93,9 @@ cv::Mat render_image(const World& world, const CameraIntrinsics& intrinsics,
                      const std::function<SE3(TimeNs)>& T_W_C, TimeNs t_ns, const RenderOptions& options,
                      cv::Mat* depth_m) {
   if (options.motion_blur_samples < 1 || !(options.exposure_time_s >= 0) || !std::isfinite(options.exposure_gain) ||
-      !(options.noise_sigma_grey >= 0))
-    throw InputError("render options", "motion_blur_samples >= 1, exposure_time_s >= 0, finite gain and noise needed");
+      !(options.noise_sigma_grey >= 0) || !(options.vignetting >= 0 && options.vignetting <= 1))
+    throw InputError("render options",
+                     "motion_blur_samples >= 1, exposure_time_s >= 0, finite gain and noise, vignetting in [0, 1] needed");
   const std::shared_ptr<const RayTable> rays = ray_table(intrinsics);
   const std::shared_ptr<const MaterialTextures> textures = material_textures(world.materials());
   const double max_range_m = world.bounds().diagonal().norm() + 1.0;
@@ -126,7 +127,9 @@ cv::Mat render_image(const World& world, const CameraIntrinsics& intrinsics,
     std::uint8_t* out = image.ptr<std::uint8_t>(r);
     for (int c = 0; c < image.cols; ++c) {
       const std::int64_t i = static_cast<std::int64_t>(r) * image.cols + c;
-      const double v = scale * in[c] + options.noise_sigma_grey * pixel_noise(quantiles, options.noise_seed, i);
+      const double cos2 = static_cast<double>(rays->dir_C[i].z()) * rays->dir_C[i].z();
+      const double vignette = 1.0 - options.vignetting * (1.0 - cos2 * cos2);
+      const double v = scale * vignette * in[c] + options.noise_sigma_grey * pixel_noise(quantiles, options.noise_seed, i);
       out[c] = static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L));
     }
   });

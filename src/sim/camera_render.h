@@ -15,6 +15,9 @@ struct RenderOptions {
   double exposure_gain = 1.0;     // multiplies radiance before quantization (exposure changes)
   int motion_blur_samples = 1;    // > 1: average of that many poses over the exposure time
   double exposure_time_s = 0.005;
+  // Share of the lens's natural cos^4 fall-off applied: brightness (1 - v) + v cos^4(angle off the optical
+  // axis), so v = 0.5 leaves the simulator's camera's corners (44 deg off axis) at 0.64 of the centre.
+  double vignetting = 0.0;
   std::uint64_t noise_seed = 0;   // the frame's noise is a pure function of this seed
 };
 

@@ -1,5 +1,6 @@
 #pragma once
-// Sensor faults injected by the simulator: blackouts, dropouts, gaps and clock offsets. They are not
+// Sensor faults injected by the simulator: blackouts, dropouts, gaps and exposure jumps (clock offsets
+// are calibration errors, sim/calibration_errors.h). They are not
 // recorded in the dataset's calibration: the system under test has to cope with them.
 #include <vector>
 
@@ -21,8 +22,6 @@ struct FaultConfig {
   // brightness jumps to exposure_jump_gain times the usual, and back at its end.
   std::vector<FaultInterval> exposure_jumps;
   double exposure_jump_gain = 2.5;
-  double camera_time_offset_s = 0;              // stamp = true capture time + offset
-  double lidar_time_offset_s = 0;
 };
 
 // True when t_ns (relative to the sequence start) falls in one of the intervals.

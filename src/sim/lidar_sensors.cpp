@@ -19,7 +19,9 @@ std::vector<double> hesai128_elevations_deg() {
 }  // namespace
 
 LidarSimConfig lidar_sensor(const std::string& name) {
-  LidarSimConfig c;  // VLP-16: 16 rings over +-15 deg, 0.2 deg at 10 Hz, +-3 cm typical accuracy, 100 m
+  // VLP-16: 16 rings over +-15 deg, 0.2 deg at 10 Hz, +-3 cm typical accuracy, 100 m, 3 mrad beam
+  // divergence; its data sheet gives no range per reflectivity, so 100 m is taken at 80 % (57 m at 10 %).
+  LidarSimConfig c;
   c.sensor = name;
   if (name == "vlp16") return c;
   if (name == "hesai128") {
@@ -30,6 +32,7 @@ LidarSimConfig lidar_sensor(const std::string& name) {
     c.max_elevation_deg = c.beam_elevations_deg.back();
     c.min_range_m = 0.3;
     c.max_range_m = 200.0;
+    c.returns.range_at_10pct_m = 200.0;  // the data sheet's range is given at 10 % reflectivity
     return c;
   }
   if (name == "mid360") {
@@ -41,6 +44,7 @@ LidarSimConfig lidar_sensor(const std::string& name) {
     c.max_elevation_deg = 52.0;
     c.min_range_m = 0.1;
     c.max_range_m = 70.0;
+    c.returns.range_at_10pct_m = 40.0;
     return c;
   }
   throw std::invalid_argument("unknown LiDAR model '" + name + "' (vlp16, hesai128 or mid360)");

@@ -97,7 +97,8 @@ void read_imu(const Reader& r, const YAML::Node& n, SimConfig& c) {
 
 void read_lidar(const Reader& r, const YAML::Node& n, SimConfig& c) {
   r.check_keys(n, {"sensor", "num_rings", "min_elevation_deg", "max_elevation_deg", "azimuth_step_deg", "rate_hz",
-                   "min_range_m", "max_range_m", "range_noise_sigma_m", "position_in_imu_m"},
+                   "min_range_m", "max_range_m", "range_noise_sigma_m", "position_in_imu_m", "range_at_10pct_m",
+                   "beam_divergence_rad", "mixed_pixel_probability", "mixed_pixel_min_jump_m"},
                "lidar");
   // The sensor model first: it sets every field, which the other keys may then override.
   std::string sensor;
@@ -117,13 +118,18 @@ void read_lidar(const Reader& r, const YAML::Node& n, SimConfig& c) {
   r.get(n, "min_range_m", c.lidar.min_range_m);
   r.get(n, "max_range_m", c.lidar.max_range_m);
   r.get(n, "range_noise_sigma_m", c.lidar.range_noise_sigma_m);
+  r.get(n, "range_at_10pct_m", c.lidar.returns.range_at_10pct_m);
+  r.get(n, "beam_divergence_rad", c.lidar.returns.beam_divergence_rad);
+  r.get(n, "mixed_pixel_probability", c.lidar.returns.mixed_pixel_probability);
+  r.get(n, "mixed_pixel_min_jump_m", c.lidar.returns.mixed_pixel_min_jump_m);
   r.get_vec3(n, "position_in_imu_m", c.p_I_L_m);
 }
 
 void read_render(const Reader& r, const YAML::Node& n, SimConfig& c) {
   r.check_keys(n, {"noise_sigma_grey", "motion_blur_samples", "exposure_time_s", "exposure_variation",
-                   "exposure_period_s"},
+                   "exposure_period_s", "vignetting"},
                "render");
+  r.get(n, "vignetting", c.render.vignetting);
   r.get(n, "noise_sigma_grey", c.render.noise_sigma_grey);
   r.get(n, "motion_blur_samples", c.render.motion_blur_samples);
   r.get(n, "exposure_time_s", c.render.exposure_time_s);
@@ -152,16 +158,25 @@ void read_motion(const Reader& r, const YAML::Node& n, SimConfig& c) {
 }
 
 void read_faults(const Reader& r, const YAML::Node& n, SimConfig& c) {
-  r.check_keys(n, {"camera_blackouts", "lidar_dropouts", "imu_gaps", "exposure_jumps", "exposure_jump_gain",
-                   "camera_time_offset_s", "lidar_time_offset_s"},
-               "faults");
+  r.check_keys(n, {"camera_blackouts", "lidar_dropouts", "imu_gaps", "exposure_jumps", "exposure_jump_gain"}, "faults");
   r.get_intervals(n, "camera_blackouts", c.faults.camera_blackouts);
   r.get_intervals(n, "lidar_dropouts", c.faults.lidar_dropouts);
   r.get_intervals(n, "imu_gaps", c.faults.imu_gaps);
   r.get_intervals(n, "exposure_jumps", c.faults.exposure_jumps);
   r.get(n, "exposure_jump_gain", c.faults.exposure_jump_gain);
-  r.get(n, "camera_time_offset_s", c.faults.camera_time_offset_s);
-  r.get(n, "lidar_time_offset_s", c.faults.lidar_time_offset_s);
+}
+
+void read_calibration_errors(const Reader& r, const YAML::Node& n, SimConfig& c) {
+  r.check_keys(n, {"camera_rotation_deg", "camera_translation_m", "lidar_rotation_deg", "lidar_translation_m",
+                   "camera_time_offset_s", "lidar_time_offset_s"},
+               "calibration_errors");
+  CalibrationErrors& e = c.calibration_errors;
+  r.get(n, "camera_rotation_deg", e.camera_rotation_deg);
+  r.get(n, "camera_translation_m", e.camera_translation_m);
+  r.get(n, "lidar_rotation_deg", e.lidar_rotation_deg);
+  r.get(n, "lidar_translation_m", e.lidar_translation_m);
+  r.get(n, "camera_time_offset_s", e.camera_time_offset_s);
+  r.get(n, "lidar_time_offset_s", e.lidar_time_offset_s);
 }
 
 void validate(const Reader& r, const SimConfig& c) {
@@ -173,6 +188,15 @@ void validate(const Reader& r, const SimConfig& c) {
                   c.pose_spline.knot_spacing_s > 0 && c.render.motion_blur_samples >= 1 && c.preview_duration_s > 0 &&
                   c.model_spacing_m > 0 && c.parallel_batch > 0 && c.faults.exposure_jump_gain > 0;
   if (!ok) r.fail("rates, sizes, speeds, spacings and counts must be positive");
+  const CalibrationErrors& e = c.calibration_errors;
+  const LidarReturnModel& m = c.lidar.returns;
+  if (!(c.render.vignetting >= 0 && c.render.vignetting <= 1)) r.fail("render.vignetting must be in [0, 1]");
+  if (!(e.camera_rotation_deg >= 0 && e.camera_translation_m >= 0 && e.lidar_rotation_deg >= 0 &&
+        e.lidar_translation_m >= 0 && std::isfinite(e.camera_time_offset_s) && std::isfinite(e.lidar_time_offset_s)))
+    r.fail("calibration_errors: angles and distances must be >= 0, offsets finite");
+  if (!(m.range_at_10pct_m >= 0 && m.beam_divergence_rad >= 0 && m.mixed_pixel_probability >= 0 &&
+        m.mixed_pixel_probability <= 1 && m.mixed_pixel_min_jump_m >= 0))
+    r.fail("lidar: range_at_10pct_m, beam_divergence_rad, mixed_pixel_min_jump_m >= 0, mixed_pixel_probability in [0, 1]");
   try {
     check_lidar_config(c.lidar);
   } catch (const std::invalid_argument& e) {
@@ -193,6 +217,15 @@ CameraIntrinsics default_camera() {
   return cam;
 }
 
+RenderOptions default_render() {
+  RenderOptions r;
+  r.noise_sigma_grey = 2.0;
+  r.motion_blur_samples = 2;
+  r.exposure_time_s = 0.005;
+  r.vignetting = 0.5;
+  return r;
+}
+
 SimConfig load_sim_config(const std::string& path) {
   const Reader r(path);
   YAML::Node root;
@@ -205,8 +238,8 @@ SimConfig load_sim_config(const std::string& path) {
   }
   SimConfig c;
   if (root.IsNull()) return c;
-  r.check_keys(root, {"camera", "imu", "lidar", "render", "motion", "faults", "preview_duration_s", "model_spacing_m",
-                      "parallel_batch"},
+  r.check_keys(root, {"camera", "imu", "lidar", "render", "motion", "faults", "calibration_errors",
+                      "preview_duration_s", "model_spacing_m", "parallel_batch"},
                "the top level");
   read_camera(r, root["camera"], c);
   read_imu(r, root["imu"], c);
@@ -214,11 +247,20 @@ SimConfig load_sim_config(const std::string& path) {
   read_render(r, root["render"], c);
   read_motion(r, root["motion"], c);
   read_faults(r, root["faults"], c);
+  read_calibration_errors(r, root["calibration_errors"], c);
   r.get(root, "preview_duration_s", c.preview_duration_s);
   r.get(root, "model_spacing_m", c.model_spacing_m);
   r.get(root, "parallel_batch", c.parallel_batch);
   validate(r, c);
   return c;
+}
+
+SimConfig ideal_sensors(SimConfig config) {
+  config.calibration_errors = no_calibration_errors();
+  config.lidar.returns = ideal_returns();
+  config.render.vignetting = 0;
+  config.render.motion_blur_samples = 1;
+  return config;
 }
 
 RouteMotionConfig route_motion_config(const SimConfig& config, Scenario scenario) {

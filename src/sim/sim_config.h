@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/calibration.h"
+#include "sim/calibration_errors.h"
 #include "sim/camera_render.h"
 #include "sim/faults.h"
 #include "sim/imu_sim.h"
@@ -15,6 +16,8 @@
 namespace vilslam::sim {
 
 CameraIntrinsics default_camera();
+// The simulator's camera: 2 grey levels of noise, 2-sample motion blur over 5 ms, vignetting 0.5.
+RenderOptions default_render();
 
 struct SimConfig {
   // Rig. Cameras look forward: the optical axis z_C0 is the body's forward axis x_I, x_C0 = -y_I
@@ -25,7 +28,7 @@ struct SimConfig {
   Vec3 p_I_L_m = Vec3(0.05, 0.0, 0.20);        // LiDAR above the cameras, axes aligned with I
   LidarSimConfig lidar;
   ImuSimConfig imu;
-  RenderOptions render;                        // noise_seed is set per frame
+  RenderOptions render = default_render();     // noise_seed is set per frame
   double exposure_variation = 0.15;            // gain = 1 + variation * sin(2 pi t / period)
   double exposure_period_s = 9.0;
 
@@ -38,10 +41,16 @@ struct SimConfig {
   TimeNs start_time_ns = 1'000'000'000;        // timestamp of the first sample
 
   FaultConfig faults;
+  CalibrationErrors calibration_errors;        // what the written calibration does not say (sensor realism)
   double preview_duration_s = 1.5;
   double model_spacing_m = 0.05;               // reference model point spacing
   int parallel_batch = 16;                     // frames rendered in parallel before being written in order
 };
+
+// The config with ideal sensors (`vilslam simulate --ideal-sensors`): no calibration errors, no missed
+// LiDAR echoes, oblique-footprint spread or mixed pixels, no vignetting or motion blur. Range and pixel
+// noise, exposure changes and faults stay as configured.
+SimConfig ideal_sensors(SimConfig config);
 
 // Throws InputError naming the file for missing files, YAML errors, unknown keys and bad values.
 SimConfig load_sim_config(const std::string& path);

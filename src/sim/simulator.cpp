@@ -156,12 +156,12 @@ ImuStream make_imu(const SimConfig& config, const SimulateRequest& request, Flow
 
 // Stereo frames at the camera rate over [t0, t1], rendered in parallel batches and written in order.
 void write_frames(const SimConfig& config, const SimulateRequest& request, const FlownScene& scene, const RigCalibration& calib,
-                  const ImuStream& imu, DatasetWriter& writer, SequenceReport& report,
+                  const SensorMounts& mounts, const ImuStream& imu, DatasetWriter& writer, SequenceReport& report,
                   const std::function<void(double)>& progress) {
   const TimeNs period_ns = s_to_ns(1.0 / config.camera.rate_hz);
   const std::size_t count = static_cast<std::size_t>((imu.t1_ns - imu.t0_ns) / period_ns) + 1;
-  const TimeNs offset_ns = s_to_ns(config.faults.camera_time_offset_s);
-  const SE3 T_I_C[2] = {calib.T_I_C0, calib.T_I_C1};
+  const TimeNs offset_ns = mounts.camera_offset_ns;
+  const SE3 T_I_C[2] = {mounts.T_I_C0, mounts.T_I_C1};
   const CameraIntrinsics* cams[2] = {&calib.cam0, &calib.cam1};
   double corner_sum = 0;
   for (std::size_t first = 0; first < count; first += config.parallel_batch) {
@@ -205,15 +205,15 @@ void write_frames(const SimConfig& config, const SimulateRequest& request, const
 
 // Sweeps whose whole period lies in [t0, t1], simulated in parallel batches, written in order to the
 // dataset and to the KITTI copy.
-void write_scans(const SimConfig& config, const SimulateRequest& request, const FlownScene& scene, const RigCalibration& calib,
-                 const ImuStream& imu, DatasetWriter& writer, KittiWriter& kitti, SequenceReport& report,
-                 const std::function<void(double)>& progress) {
+void write_scans(const SimConfig& config, const SimulateRequest& request, const FlownScene& scene,
+                 const SensorMounts& mounts, const ImuStream& imu, DatasetWriter& writer, KittiWriter& kitti,
+                 SequenceReport& report, const std::function<void(double)>& progress) {
   const TimeNs period_ns = s_to_ns(1.0 / config.lidar.rate_hz);
   const std::size_t count = imu.t1_ns - imu.t0_ns >= period_ns
                                 ? static_cast<std::size_t>((imu.t1_ns - imu.t0_ns - period_ns) / period_ns) + 1
                                 : 0;
-  const TimeNs offset_ns = s_to_ns(config.faults.lidar_time_offset_s);
-  const auto T_W_L = [&](TimeNs t) { return scene.motion->pose(t) * calib.T_I_L; };
+  const TimeNs offset_ns = mounts.lidar_offset_ns;
+  const auto T_W_L = [&](TimeNs t) { return scene.motion->pose(t) * mounts.T_I_L; };
   double ratio_sum = 0;
   for (std::size_t first = 0; first < count; first += config.parallel_batch) {
     const std::size_t n = std::min<std::size_t>(config.parallel_batch, count - first);
@@ -254,6 +254,8 @@ void write_tum_copy(const std::vector<GroundTruthState>& states, const fs::path&
 SequenceReport simulate(const SimConfig& config, const SimulateRequest& request) {
   FlownScene scene = make_scene(config, request);
   RigCalibration calib = rig_calibration(config);
+  // The sensors render and scan from their true mounts; the calibration written is the nominal one.
+  const SensorMounts mounts = true_mounts(calib, config.calibration_errors, mix_seed(request.seed, 5, 0));
   const ImuStream imu = make_imu(config, request, scene);
   if (!request.imu_path.empty()) {
     // The estimator's calibration comes from the config and the written IMU stream, never the ground truth.
@@ -288,8 +290,8 @@ SequenceReport simulate(const SimConfig& config, const SimulateRequest& request)
       if (request.progress) request.progress(offset + share * fraction);
     });
   };
-  write_frames(config, request, scene, calib, imu, writer, report, stage_progress(0.0, image_share));
-  write_scans(config, request, scene, calib, imu, writer, kitti, report, stage_progress(image_share, 1.0 - image_share));
+  write_frames(config, request, scene, calib, mounts, imu, writer, report, stage_progress(0.0, image_share));
+  write_scans(config, request, scene, mounts, imu, writer, kitti, report, stage_progress(image_share, 1.0 - image_share));
   kitti.finish();
   write_tum_copy(imu.groundtruth, staging / "groundtruth.tum");
   const double spacing_m = request.preview ? std::max(config.model_spacing_m, 0.2) : config.model_spacing_m;

@@ -189,6 +189,28 @@ TEST(CameraRender, NoiseGainAndDeterminism) {
   EXPECT_NEAR(cv::mean(render_image(world, cam, pose, 0, dim))[0], 0.5 * cv::mean(clean)[0], 1.0);
 }
 
+// Vignetting darkens the image towards its corners by the configured share of the cos^4 law.
+TEST(CameraRender, VignettingDarkensTheCornersByTheCosineLaw) {
+  const World& world = highbay();
+  const CameraIntrinsics cam = default_camera();
+  const auto pose = fixed(route_camera_pose(world.route_W(), 0));
+  RenderOptions o = noiseless();
+  cv::Mat flat, vignetted;
+  render_image(world, cam, pose, 0, o).convertTo(flat, CV_32F);
+  o.vignetting = 0.5;
+  render_image(world, cam, pose, 0, o).convertTo(vignetted, CV_32F);
+  // Pixel ratios where the flat image is bright enough for rounding not to matter.
+  const auto ratio_at = [&](int r, int c) {
+    const cv::Rect box(c - 4, r - 4, 9, 9);
+    return cv::sum(vignetted(box))[0] / cv::sum(flat(box))[0];
+  };
+  const Vec3 corner_ray = unproject(cam, Eigen::Vector2d(6, 6));
+  const double cos4 = std::pow(corner_ray.z(), 4);
+  EXPECT_NEAR(ratio_at(240, 376), 1.0, 0.01);
+  EXPECT_NEAR(ratio_at(6, 6), 0.5 + 0.5 * cos4, 0.02);
+  EXPECT_LT(ratio_at(6, 6), 0.7);
+}
+
 double gradient_energy(const cv::Mat& image) {
   cv::Mat gx;
   cv::Sobel(image, gx, CV_32F, 1, 0);

@@ -38,13 +38,27 @@ TEST(SimConfig, DefaultFileListsTheDefaults) {
   EXPECT_EQ(file.pose_spline.knot_spacing_s, def.pose_spline.knot_spacing_s);
   EXPECT_EQ(file.start_time_ns, def.start_time_ns);
   EXPECT_EQ(file.preview_duration_s, def.preview_duration_s);
+  EXPECT_EQ(file.render.vignetting, def.render.vignetting);
+  EXPECT_EQ(file.render.motion_blur_samples, def.render.motion_blur_samples);
+  EXPECT_EQ(file.lidar.returns.range_at_10pct_m, def.lidar.returns.range_at_10pct_m);
+  EXPECT_EQ(file.lidar.returns.beam_divergence_rad, def.lidar.returns.beam_divergence_rad);
+  EXPECT_EQ(file.lidar.returns.mixed_pixel_probability, def.lidar.returns.mixed_pixel_probability);
+  EXPECT_EQ(file.lidar.returns.mixed_pixel_min_jump_m, def.lidar.returns.mixed_pixel_min_jump_m);
+  const CalibrationErrors& e = file.calibration_errors;
+  EXPECT_EQ(e.camera_rotation_deg, def.calibration_errors.camera_rotation_deg);
+  EXPECT_EQ(e.camera_translation_m, def.calibration_errors.camera_translation_m);
+  EXPECT_EQ(e.lidar_rotation_deg, def.calibration_errors.lidar_rotation_deg);
+  EXPECT_EQ(e.lidar_translation_m, def.calibration_errors.lidar_translation_m);
+  EXPECT_EQ(e.camera_time_offset_s, def.calibration_errors.camera_time_offset_s);
+  EXPECT_EQ(e.lidar_time_offset_s, def.calibration_errors.lidar_time_offset_s);
 }
 
 TEST(SimConfig, ReadsOverridesAndFaults) {
   const SimConfig c = load_sim_config(write_yaml(
       "camera: {fx: 300, distortion_coeffs: [-0.28, 0.07, 0.0002, 0.00002]}\n"
       "imu: {rate_hz: 400}\n"
-      "faults: {camera_blackouts: [[2.0, 3.5]], imu_gaps: [[1, 1.2], [4, 5]], lidar_time_offset_s: 0.01}\n"));
+      "faults: {camera_blackouts: [[2.0, 3.5]], imu_gaps: [[1, 1.2], [4, 5]]}\n"
+      "calibration_errors: {lidar_time_offset_s: 0.01, camera_rotation_deg: 0}\n"));
   EXPECT_EQ(c.camera.fx, 300);
   EXPECT_EQ(c.camera.fy, 460);
   EXPECT_EQ(c.camera.distortion, DistortionModel::kRadTan);
@@ -52,7 +66,9 @@ TEST(SimConfig, ReadsOverridesAndFaults) {
   ASSERT_EQ(c.faults.camera_blackouts.size(), 1u);
   EXPECT_EQ(c.faults.camera_blackouts[0].end_s, 3.5);
   EXPECT_EQ(c.faults.imu_gaps.size(), 2u);
-  EXPECT_EQ(c.faults.lidar_time_offset_s, 0.01);
+  EXPECT_EQ(c.calibration_errors.lidar_time_offset_s, 0.01);
+  EXPECT_EQ(c.calibration_errors.camera_rotation_deg, 0);
+  EXPECT_EQ(c.calibration_errors.camera_time_offset_s, CalibrationErrors{}.camera_time_offset_s);
   EXPECT_TRUE(in_fault(c.faults.imu_gaps, s_to_ns(4.5)));
   EXPECT_FALSE(in_fault(c.faults.imu_gaps, s_to_ns(3.0)));
 }

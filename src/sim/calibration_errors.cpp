@@ -1,0 +1,45 @@
+#include "sim/calibration_errors.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sim/rng.h"
+
+namespace vilslam::sim {
+namespace {
+
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+
+Vec3 unit_direction(Rng& rng) {
+  // Uniform on the sphere: z uniform in [-1, 1], azimuth uniform.
+  const double z = rng.uniform(-1.0, 1.0), phi = rng.uniform(0.0, 2.0 * M_PI);
+  const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+  return Vec3(r * std::cos(phi), r * std::sin(phi), z);
+}
+
+// The sensor's true pose in I: the nominal one turned about its own centre and moved (both in I).
+SE3 perturbed(const SE3& T_I_S, double rotation_deg, double translation_m, Rng& rng) {
+  const Vec3 axis = unit_direction(rng), direction = unit_direction(rng);
+  return SE3(so3::exp(rotation_deg * kDegToRad * axis) * T_I_S.rotation(), T_I_S.translation() + translation_m * direction);
+}
+
+}  // namespace
+
+CalibrationErrors no_calibration_errors() {
+  return CalibrationErrors{0, 0, 0, 0, 0, 0};
+}
+
+SensorMounts true_mounts(const RigCalibration& nominal, const CalibrationErrors& errors, std::uint64_t seed) {
+  Rng rng(seed);
+  SensorMounts m;
+  // The stereo pair moves as one body: its baseline is calibrated far better than its mount on the IMU.
+  const SE3 T_C0_C1 = nominal.T_I_C0.inverse() * nominal.T_I_C1;
+  m.T_I_C0 = perturbed(nominal.T_I_C0, errors.camera_rotation_deg, errors.camera_translation_m, rng);
+  m.T_I_C1 = m.T_I_C0 * T_C0_C1;
+  m.T_I_L = perturbed(nominal.T_I_L, errors.lidar_rotation_deg, errors.lidar_translation_m, rng);
+  m.camera_offset_ns = s_to_ns(errors.camera_time_offset_s);
+  m.lidar_offset_ns = s_to_ns(errors.lidar_time_offset_s);
+  return m;
+}
+
+}  // namespace vilslam::sim

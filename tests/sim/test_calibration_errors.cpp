@@ -1,0 +1,53 @@
+// The true sensor mounts: off the written calibration by exactly the configured angles and distances,
+// about axes drawn from the seed, with the stereo baseline kept.
+#include <gtest/gtest.h>
+
+#include "sim/calibration_errors.h"
+#include "sim/sim_config.h"
+
+namespace vilslam::sim {
+namespace {
+
+double angle_deg(const SE3& a, const SE3& b) {
+  return so3::log(a.rotation().transpose() * b.rotation()).norm() * 180.0 / M_PI;
+}
+
+TEST(CalibrationErrors, TrueMountsAreOffByTheConfiguredAmounts) {
+  const RigCalibration nominal = rig_calibration(SimConfig{});
+  CalibrationErrors e;
+  e.camera_rotation_deg = 0.5;
+  e.camera_translation_m = 0.01;
+  e.lidar_rotation_deg = 0.8;
+  e.lidar_translation_m = 0.02;
+  const SensorMounts m = true_mounts(nominal, e, 42);
+  EXPECT_NEAR(angle_deg(nominal.T_I_C0, m.T_I_C0), 0.5, 1e-9);
+  EXPECT_NEAR((nominal.T_I_C0.translation() - m.T_I_C0.translation()).norm(), 0.01, 1e-12);
+  EXPECT_NEAR(angle_deg(nominal.T_I_L, m.T_I_L), 0.8, 1e-9);
+  EXPECT_NEAR((nominal.T_I_L.translation() - m.T_I_L.translation()).norm(), 0.02, 1e-12);
+  // The pair moves as one body.
+  const SE3 nominal_C0_C1 = nominal.T_I_C0.inverse() * nominal.T_I_C1, true_C0_C1 = m.T_I_C0.inverse() * m.T_I_C1;
+  EXPECT_LT((nominal_C0_C1.translation() - true_C0_C1.translation()).norm(), 1e-12);
+  EXPECT_LT(angle_deg(nominal_C0_C1, true_C0_C1), 1e-9);
+  EXPECT_EQ(m.camera_offset_ns, s_to_ns(e.camera_time_offset_s));
+  EXPECT_EQ(m.lidar_offset_ns, s_to_ns(e.lidar_time_offset_s));
+  // Another seed, another direction; the same seed, the same mounts.
+  const SensorMounts other = true_mounts(nominal, e, 43), again = true_mounts(nominal, e, 42);
+  EXPECT_GT(angle_deg(m.T_I_C0, other.T_I_C0), 0.05);
+  EXPECT_EQ(again.T_I_L.translation(), m.T_I_L.translation());
+}
+
+TEST(CalibrationErrors, NoErrorsKeepTheWrittenMounts) {
+  const RigCalibration nominal = rig_calibration(SimConfig{});
+  const SensorMounts m = true_mounts(nominal, no_calibration_errors(), 42);
+  EXPECT_LT(angle_deg(nominal.T_I_C0, m.T_I_C0), 1e-12);
+  EXPECT_LT((nominal.T_I_L.translation() - m.T_I_L.translation()).norm(), 1e-15);
+  EXPECT_EQ(m.camera_offset_ns, 0);
+  const SimConfig ideal = ideal_sensors(SimConfig{});
+  EXPECT_EQ(ideal.calibration_errors.lidar_rotation_deg, 0);
+  EXPECT_EQ(ideal.render.motion_blur_samples, 1);
+  EXPECT_EQ(ideal.render.vignetting, 0);
+  EXPECT_EQ(ideal.lidar.returns.mixed_pixel_probability, 0);
+}
+
+}  // namespace
+}  // namespace vilslam::sim
