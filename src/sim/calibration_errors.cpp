@@ -17,9 +17,12 @@ Vec3 unit_direction(Rng& rng) {
   return Vec3(r * std::cos(phi), r * std::sin(phi), z);
 }
 
-// The sensor's true pose in I: the nominal one turned about its own centre and moved (both in I).
+// The sensor's true pose in I: the nominal one turned about its own centre and moved (both in I). The
+// draws are made either way, so one sensor's error does not depend on whether the other has one; without
+// an error the nominal pose is kept bit for bit.
 SE3 perturbed(const SE3& T_I_S, double rotation_deg, double translation_m, Rng& rng) {
   const Vec3 axis = unit_direction(rng), direction = unit_direction(rng);
+  if (rotation_deg == 0 && translation_m == 0) return T_I_S;
   return SE3(so3::exp(rotation_deg * kDegToRad * axis) * T_I_S.rotation(), T_I_S.translation() + translation_m * direction);
 }
 
@@ -36,6 +39,7 @@ SensorMounts true_mounts(const RigCalibration& nominal, const CalibrationErrors&
   const SE3 T_C0_C1 = nominal.T_I_C0.inverse() * nominal.T_I_C1;
   m.T_I_C0 = perturbed(nominal.T_I_C0, errors.camera_rotation_deg, errors.camera_translation_m, rng);
   m.T_I_C1 = m.T_I_C0 * T_C0_C1;
+  if (errors.camera_rotation_deg == 0 && errors.camera_translation_m == 0) m.T_I_C1 = nominal.T_I_C1;
   m.T_I_L = perturbed(nominal.T_I_L, errors.lidar_rotation_deg, errors.lidar_translation_m, rng);
   m.camera_offset_ns = s_to_ns(errors.camera_time_offset_s);
   m.lidar_offset_ns = s_to_ns(errors.lidar_time_offset_s);

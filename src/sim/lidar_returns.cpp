@@ -9,11 +9,7 @@
 namespace vilslam::sim {
 
 LidarReturnModel ideal_returns() {
-  LidarReturnModel m;
-  m.range_at_10pct_m = 0;
-  m.beam_divergence_rad = 0;
-  m.mixed_pixel_probability = 0;
-  return m;
+  return LidarReturnModel{};
 }
 
 double detection_range_m(const LidarReturnModel& model, double reflectivity, double cos_incidence) {

@@ -6,20 +6,21 @@
 
 namespace vilslam::sim {
 
+// Every effect is off by default (an ideal sensor); lidar_sensor() sets each model's figures.
 struct LidarReturnModel {
   // Detection range for a Lambertian target of 10 % reflectivity; 0 disables missed returns. A target of
   // effective reflectivity rho_eff = reflectivity * cos(incidence) is detected out to
   // range_at_10pct_m * (rho_eff / 0.1)^reflectivity_exponent (the exponent fits the Mid-360 data sheet's
   // 40 m at 10 % and 70 m at 80 %: ln(70/40) / ln 8).
-  double range_at_10pct_m = 57.0;
+  double range_at_10pct_m = 0.0;
   double reflectivity_exponent = 0.27;
   double detection_range_jitter = 0.1;  // relative 1-sigma pulse-to-pulse spread of that range
   // Full beam divergence; on a surface at incidence theta the footprint spreads the range by
   // 0.5 * range * divergence * tan(theta) (1 sigma, tan capped at 10), added to the range noise.
-  double beam_divergence_rad = 0.003;
+  double beam_divergence_rad = 0.0;
   // A beam whose next firing hits a surface more than mixed_pixel_min_jump_m nearer or farther straddles a
   // depth edge; with this probability it returns a range uniformly between the two. 0 disables.
-  double mixed_pixel_probability = 0.5;
+  double mixed_pixel_probability = 0.0;
   double mixed_pixel_min_jump_m = 0.3;
 };
 

@@ -23,6 +23,9 @@ LidarSimConfig lidar_sensor(const std::string& name) {
   // divergence; its data sheet gives no range per reflectivity, so 100 m is taken at 80 % (57 m at 10 %).
   LidarSimConfig c;
   c.sensor = name;
+  c.returns.range_at_10pct_m = 57.0;
+  c.returns.beam_divergence_rad = 0.003;
+  c.returns.mixed_pixel_probability = 0.5;
   if (name == "vlp16") return c;
   if (name == "hesai128") {
     // Pandar128E3X data sheet: 0.2 deg azimuth at 10 Hz, 0.3-200 m, +-2 cm accuracy beyond 1 m.

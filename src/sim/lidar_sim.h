@@ -42,7 +42,7 @@ struct LidarSimConfig {
   double min_range_m = 0.5;
   double max_range_m = 100.0;
   double range_noise_sigma_m = 0.02;
-  LidarReturnModel returns;           // missed echoes, oblique footprints, mixed pixels (VLP-16 figures)
+  LidarReturnModel returns;           // missed echoes, oblique footprints, mixed pixels (ideal unless set)
 };
 
 // The sensors the simulator models (docs/simulator.md): "vlp16" (the default config), "hesai128" (128

@@ -220,7 +220,7 @@ CameraIntrinsics default_camera() {
 RenderOptions default_render() {
   RenderOptions r;
   r.noise_sigma_grey = 2.0;
-  r.motion_blur_samples = 2;
+  r.motion_blur_samples = 1;
   r.exposure_time_s = 0.005;
   r.vignetting = 0.5;
   return r;
@@ -238,7 +238,7 @@ SimConfig load_sim_config(const std::string& path) {
   }
   SimConfig c;
   if (root.IsNull()) return c;
-  r.check_keys(root, {"camera", "imu", "lidar", "render", "motion", "faults", "calibration_errors",
+  r.check_keys(root, {"camera", "imu", "lidar", "render", "motion", "faults", "sensor_realism", "calibration_errors",
                       "preview_duration_s", "model_spacing_m", "parallel_batch"},
                "the top level");
   read_camera(r, root["camera"], c);
@@ -247,6 +247,7 @@ SimConfig load_sim_config(const std::string& path) {
   read_render(r, root["render"], c);
   read_motion(r, root["motion"], c);
   read_faults(r, root["faults"], c);
+  r.get(root, "sensor_realism", c.sensor_realism);
   read_calibration_errors(r, root["calibration_errors"], c);
   r.get(root, "preview_duration_s", c.preview_duration_s);
   r.get(root, "model_spacing_m", c.model_spacing_m);
@@ -259,7 +260,6 @@ SimConfig ideal_sensors(SimConfig config) {
   config.calibration_errors = no_calibration_errors();
   config.lidar.returns = ideal_returns();
   config.render.vignetting = 0;
-  config.render.motion_blur_samples = 1;
   return config;
 }
 

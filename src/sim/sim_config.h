@@ -16,7 +16,7 @@
 namespace vilslam::sim {
 
 CameraIntrinsics default_camera();
-// The simulator's camera: 2 grey levels of noise, 2-sample motion blur over 5 ms, vignetting 0.5.
+// The simulator's camera: 2 grey levels of noise, no motion blur (5 ms exposure when blurred), vignetting 0.5.
 RenderOptions default_render();
 
 struct SimConfig {
@@ -26,7 +26,7 @@ struct SimConfig {
   double stereo_baseline_m = 0.3;
   Vec3 p_I_C0_m = Vec3(0.10, 0.15, 0.0);       // left camera centre in the IMU frame
   Vec3 p_I_L_m = Vec3(0.05, 0.0, 0.20);        // LiDAR above the cameras, axes aligned with I
-  LidarSimConfig lidar;
+  LidarSimConfig lidar = lidar_sensor("vlp16");
   ImuSimConfig imu;
   RenderOptions render = default_render();     // noise_seed is set per frame
   double exposure_variation = 0.15;            // gain = 1 + variation * sin(2 pi t / period)
@@ -41,15 +41,18 @@ struct SimConfig {
   TimeNs start_time_ns = 1'000'000'000;        // timestamp of the first sample
 
   FaultConfig faults;
-  CalibrationErrors calibration_errors;        // what the written calibration does not say (sensor realism)
+  // Sensor realism (docs/simulator.md): the LiDAR's return model, the render's vignetting and blur and the
+  // calibration errors below apply only when this is on (`sensor_realism: true`, `--realistic-sensors`).
+  bool sensor_realism = false;
+  CalibrationErrors calibration_errors;        // what the written calibration does not say
   double preview_duration_s = 1.5;
   double model_spacing_m = 0.05;               // reference model point spacing
   int parallel_batch = 16;                     // frames rendered in parallel before being written in order
 };
 
-// The config with ideal sensors (`vilslam simulate --ideal-sensors`): no calibration errors, no missed
-// LiDAR echoes, oblique-footprint spread or mixed pixels, no vignetting or motion blur. Range and pixel
-// noise, exposure changes and faults stay as configured.
+// The config with ideal sensors (what the simulator renders when sensor_realism is off): no calibration
+// errors, no missed LiDAR echoes, oblique-footprint spread or mixed pixels, no vignetting. Range and pixel
+// noise, motion blur, exposure changes and faults stay as configured.
 SimConfig ideal_sensors(SimConfig config);
 
 // Throws InputError naming the file for missing files, YAML errors, unknown keys and bad values.

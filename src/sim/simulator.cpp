@@ -251,7 +251,8 @@ void write_tum_copy(const std::vector<GroundTruthState>& states, const fs::path&
 
 }  // namespace
 
-SequenceReport simulate(const SimConfig& config, const SimulateRequest& request) {
+SequenceReport simulate(const SimConfig& configured, const SimulateRequest& request) {
+  const SimConfig config = configured.sensor_realism ? configured : ideal_sensors(configured);
   FlownScene scene = make_scene(config, request);
   RigCalibration calib = rig_calibration(config);
   // The sensors render and scan from their true mounts; the calibration written is the nominal one.

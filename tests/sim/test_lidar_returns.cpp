@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "sim/lidar_returns.h"
+#include "sim/lidar_sim.h"
 #include "sim/rng.h"
 
 namespace vilslam::sim {
@@ -21,7 +22,7 @@ TEST(LidarReturns, IdealModelReturnsEveryHitWithTheRangeNoiseAlone) {
 }
 
 TEST(LidarReturns, DarkAndObliqueSurfacesAreMissedFarAway) {
-  const LidarReturnModel m;  // the VLP-16's figures
+  const LidarReturnModel m = lidar_sensor("vlp16").returns;
   EXPECT_NEAR(detection_range_m(m, 0.1, 1.0), 57.0, 1e-9);
   EXPECT_NEAR(detection_range_m(m, 0.8, 1.0), 100.0, 0.5);             // the data sheet's 100 m
   EXPECT_LT(detection_range_m(m, 0.8, 0.1), detection_range_m(m, 0.8, 1.0) * 0.6);  // 84 deg incidence
@@ -35,7 +36,7 @@ TEST(LidarReturns, DarkAndObliqueSurfacesAreMissedFarAway) {
 }
 
 TEST(LidarReturns, ObliqueFootprintsSpreadTheRange) {
-  const LidarReturnModel m;
+  const LidarReturnModel m = lidar_sensor("vlp16").returns;
   const double cos80 = std::cos(80.0 * M_PI / 180.0);
   const double footprint_m = 0.5 * 10.0 * 0.003 * std::tan(80.0 * M_PI / 180.0);  // 8.5 cm
   EXPECT_NEAR(range_sigma_m(m, kNoiseM, 10.0, cos80), std::hypot(kNoiseM, footprint_m), 1e-12);
@@ -50,7 +51,7 @@ TEST(LidarReturns, ObliqueFootprintsSpreadTheRange) {
 }
 
 TEST(LidarReturns, BeamsAtADepthEdgeReturnMixedRanges) {
-  const LidarReturnModel m;  // half of the edge beams mixed
+  const LidarReturnModel m = lidar_sensor("vlp16").returns;  // half of the edge beams mixed
   int between = 0, outside = 0;
   const int n = 2000;
   for (int i = 0; i < n; ++i) {

@@ -38,6 +38,7 @@ TEST(SimConfig, DefaultFileListsTheDefaults) {
   EXPECT_EQ(file.pose_spline.knot_spacing_s, def.pose_spline.knot_spacing_s);
   EXPECT_EQ(file.start_time_ns, def.start_time_ns);
   EXPECT_EQ(file.preview_duration_s, def.preview_duration_s);
+  EXPECT_EQ(file.sensor_realism, def.sensor_realism);
   EXPECT_EQ(file.render.vignetting, def.render.vignetting);
   EXPECT_EQ(file.render.motion_blur_samples, def.render.motion_blur_samples);
   EXPECT_EQ(file.lidar.returns.range_at_10pct_m, def.lidar.returns.range_at_10pct_m);

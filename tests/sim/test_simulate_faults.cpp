@@ -22,6 +22,7 @@ TEST(Simulate, FaultsShowInTheDataset) {
                         "  lidar_dropouts: [[0.3, 0.5]]\n"
                         "  imu_gaps: [[0.5, 0.6]]\n"
                         "  exposure_jumps: [[0.7, 0.8]]\n"
+                        "sensor_realism: true\n"
                         "calibration_errors:\n"
                         "  camera_time_offset_s: 0.004\n"
                         "  lidar_time_offset_s: -0.002\n";

@@ -1,0 +1,60 @@
+// Sensor realism reaches the data and never the calibration: the same preview simulated with and without
+// --realistic-sensors writes the same calibration files, while the sweeps lose echoes and the stamps move.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "io/dataset.h"
+#include "test_util.h"
+
+namespace vilslam::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Streams {
+  std::size_t lidar_points = 0;
+  std::vector<TimeNs> frame_stamps, scan_stamps;
+};
+
+Streams read_streams(const fs::path& dir) {
+  Streams s;
+  const auto reader = open_dataset(dir.string());
+  while (auto e = reader->next()) {
+    if (const auto* f = std::get_if<StereoFrame>(&e->data)) s.frame_stamps.push_back(f->t_ns);
+    if (const auto* l = std::get_if<LidarScan>(&e->data)) {
+      s.lidar_points += l->points.size();
+      s.scan_stamps.push_back(l->t_ns);
+    }
+  }
+  return s;
+}
+
+TEST(SimulateRealism, ReachesTheDataAndNotTheCalibration) {
+  const fs::path dir = test::temp_dir();
+  const fs::path cfg = dir / "small.yaml";
+  std::ofstream(cfg) << "camera: {width_px: 188, height_px: 120, fx: 115, fy: 115, cx: 93.5, cy: 59.5}\n"
+                        "preview_duration_s: 0.6\n";
+  const std::string common = "simulate outdoor --preview --seed 4 --config " + cfg.string() + " --out ";
+  ASSERT_EQ(test::run_cli(common + (dir / "ideal").string()).exit_code, 0);
+  ASSERT_EQ(test::run_cli(common + (dir / "real").string() + " --realistic-sensors").exit_code, 0);
+  for (const char* file : {"rig.yaml", "mav0/cam0/sensor.yaml", "mav0/cam1/sensor.yaml", "mav0/imu0/sensor.yaml",
+                           "mav0/lidar0/sensor.yaml", "mav0/imu0/data.csv", "groundtruth.tum"})
+    EXPECT_EQ(test::read_file_bytes(dir / "ideal" / file), test::read_file_bytes(dir / "real" / file)) << file;
+  const Streams ideal = read_streams(dir / "ideal"), real = read_streams(dir / "real");
+  ASSERT_EQ(ideal.frame_stamps.size(), real.frame_stamps.size());
+  ASSERT_EQ(ideal.scan_stamps.size(), real.scan_stamps.size());
+  for (std::size_t i = 0; i < ideal.frame_stamps.size(); ++i)
+    EXPECT_EQ(real.frame_stamps[i] - ideal.frame_stamps[i], 3'000'000);  // the camera's 3 ms
+  for (std::size_t i = 0; i < ideal.scan_stamps.size(); ++i)
+    EXPECT_EQ(real.scan_stamps[i] - ideal.scan_stamps[i], -2'000'000);   // the LiDAR's -2 ms
+  // Missed echoes outweigh nothing else: fewer points, but most of them still there.
+  EXPECT_LT(real.lidar_points, ideal.lidar_points * 99 / 100) << ideal.lidar_points << " -> " << real.lidar_points;
+  EXPECT_GT(real.lidar_points, ideal.lidar_points / 2);
+  std::printf("[realism] outdoor preview: %zu -> %zu LiDAR points (%.1f %% missed)\n", ideal.lidar_points,
+              real.lidar_points, 100.0 * (1.0 - double(real.lidar_points) / ideal.lidar_points));
+}
+
+}  // namespace
+}  // namespace vilslam::sim
