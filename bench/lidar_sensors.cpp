@@ -33,7 +33,8 @@ const Case& load_case(int sensor) {
     const sim::RouteMotion motion(world.route_W(), sim::route_motion_config(sim::SimConfig{}, sim::Scenario::kHighbay));
     const SE3 T_I_L = sim::rig_calibration(sim::SimConfig{}).T_I_L;
     const auto T_W_L = [&](TimeNs t) { return motion.pose(t) * T_I_L; };
-    const sim::LidarSimConfig config = sim::lidar_sensor(kSensors[sensor]);
+    sim::LidarSimConfig config = sim::lidar_sensor(kSensors[sensor]);
+    config.returns = sim::ideal_returns();  // the sweeps of `vilslam simulate` without sensor realism
     auto c = std::make_unique<Case>();
     const TimeNs t0 = 10'000'000'000, period = 100'000'000;
     c->previous = sim::simulate_sweep(world, config, t0, T_W_L, 1);

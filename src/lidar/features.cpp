@@ -45,11 +45,28 @@ void compute_smoothness(RingPoints& ring, int half_window) {
   }
 }
 
+// The range noise of point i: the sensor's, and the spread of a beam's footprint on an oblique surface,
+// 0.5 r divergence tan(incidence). The incidence comes from the ring's chord over the window, t: the
+// beam u grazes a surface along which the ring runs, sin(incidence) = |u . t| (tan capped at 10, 84 deg,
+// beyond which max_neighbor_gap_ratio rejects the point anyway). The chord sees only the ring's own
+// direction: a floor under a downward beam reads as head-on.
+double range_sigma_m(const RingPoints& ring, int i, const FeatureConfig& config) {
+  if (!(config.beam_divergence_rad > 0)) return config.range_noise_sigma_m;
+  const int w = config.half_window;
+  const Eigen::Vector3f chord = ring.p[i + w] - ring.p[i - w];
+  const float chord_m = chord.norm();
+  if (!(chord_m > 0)) return config.range_noise_sigma_m;
+  const double sin_incidence = std::min(1.0, std::abs(static_cast<double>(ring.p[i].dot(chord)) / (ring.range[i] * chord_m)));
+  const double cos_incidence = std::sqrt(1.0 - sin_incidence * sin_incidence);
+  const double tan_incidence = cos_incidence > 0.1 * sin_incidence ? sin_incidence / cos_incidence : 10.0;
+  return std::hypot(config.range_noise_sigma_m, 0.5 * ring.range[i] * config.beam_divergence_rad * tan_incidence);
+}
+
 // Smoothness std that range noise alone gives a point on a plane, at range_m: X_i carries 2w times its
 // noise, each neighbour once, so |sum_j (X_i - X_j)| ~ sqrt(2w (2w + 1)) sigma and c ~ that / (2w r).
-float noise_smoothness(float range_m, const FeatureConfig& config) {
-  const double w2 = 2.0 * config.half_window;
-  return static_cast<float>(std::sqrt(w2 * (w2 + 1.0)) * config.range_noise_sigma_m / (w2 * range_m));
+float noise_smoothness(float range_m, double sigma_m, int half_window) {
+  const double w2 = 2.0 * half_window;
+  return static_cast<float>(std::sqrt(w2 * (w2 + 1.0)) * sigma_m / (w2 * range_m));
 }
 
 // LOAM Sec. V-A rejections: points on surfaces nearly parallel to the beam (both neighbours far away
@@ -94,7 +111,8 @@ void select_in_sector(RingPoints& ring, int begin, int end, const FeatureConfig&
   std::vector<int> edge_candidates, surface_candidates;
   for (int i = begin; i < end; ++i) {
     if (!ring.usable[i]) continue;
-    const float noise_floor = static_cast<float>(config.edge_noise_sigmas) * noise_smoothness(ring.range[i], config);
+    const float noise_floor = static_cast<float>(config.edge_noise_sigmas) *
+                              noise_smoothness(ring.range[i], range_sigma_m(ring, i, config), config.half_window);
     const float edge_min = std::max(static_cast<float>(config.edge_min_smoothness), noise_floor);
     if (ring.smoothness[i] > edge_min) edge_candidates.push_back(i);
     if (ring.smoothness[i] < config.surface_max_smoothness) surface_candidates.push_back(i);

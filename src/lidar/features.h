@@ -35,6 +35,9 @@ struct FeatureConfig {
   // 2 cm: the order of the VLP-16 datasheet's "+-3 cm typical" range accuracy (also the simulator's default
   // noise; the value comes from the sensor's data sheet, not from the generator).
   double range_noise_sigma_m = 0.02;
+  // On an oblique surface the beam's footprint spreads the range by 0.5 r divergence tan(incidence), which
+  // the edge test adds to the range noise (features.cpp). 3 mrad: the VLP-16 data sheet; 0 ignores it.
+  double beam_divergence_rad = 0.003;
   double edge_noise_sigmas = 4.0;
   double surface_max_smoothness = 0.005; // below this a point may be a surface point
   double occlusion_jump_ratio = 0.1;     // a range jump above this fraction of the range marks an occlusion

@@ -73,6 +73,7 @@ YamlFields lidar_yaml_fields(LidarConfig& c) {
                                 yaml_value("max_surfaces_per_sector", f.max_surfaces_per_sector),
                                 yaml_value("edge_min_smoothness", f.edge_min_smoothness),
                                 yaml_value("range_noise_sigma_m", f.range_noise_sigma_m),
+                                yaml_value("beam_divergence_rad", f.beam_divergence_rad),
                                 yaml_value("edge_noise_sigmas", f.edge_noise_sigmas),
                                 yaml_value("surface_max_smoothness", f.surface_max_smoothness),
                                 yaml_value("occlusion_jump_ratio", f.occlusion_jump_ratio),
@@ -101,6 +102,9 @@ YamlFields lidar_yaml_fields(LidarConfig& c) {
 void validate_lidar_config(const LidarConfig& c, const std::string& source) {
   if (!(c.registration.tilt_prior_sigma_rad >= 0.0)) {
     throw InputError(source, "registration.tilt_prior_sigma_rad must be >= 0 (0 = off)");
+  }
+  if (!(c.features.beam_divergence_rad >= 0.0)) {
+    throw InputError(source, "features.beam_divergence_rad must be >= 0 (0 = off)");
   }
   if (c.rings.num_rings < 1 || c.features.half_window < 1 || c.features.sectors_per_ring < 1 ||
       c.map.edges.voxel_size_m <= 0.0 || c.map.surfaces.voxel_size_m <= 0.0) {

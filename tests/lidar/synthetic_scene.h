@@ -48,10 +48,27 @@ inline double cast(const Scene& scene, const Vec3& o, const Vec3& d) {
   return range;
 }
 
+// |cos| of the incidence of direction d on the face of box b (seen from inside) that p lies on.
+inline double cos_incidence_inside(const Box& b, const Vec3& p, const Vec3& d) {
+  int face_axis = 0;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const double bound : {b.lo[axis], b.hi[axis]}) {
+      if (std::abs(p[axis] - bound) < nearest) {
+        nearest = std::abs(p[axis] - bound);
+        face_axis = axis;
+      }
+    }
+  }
+  return std::abs(d[face_axis]);
+}
+
 // One sweep of a VLP-16-like sensor (16 rings, -15..15 deg, azimuth_step_deg) over duration_s from t_ns,
-// with Gaussian range noise of range_noise_m (1 sigma).
+// with Gaussian range noise of range_noise_m (1 sigma), plus, with beam_divergence_rad, the spread of an
+// oblique footprint on the room's faces, 0.5 r divergence tan(incidence) (the simulator's model, tan <= 10).
 inline LidarScan sweep(const Scene& scene, const std::function<SE3(TimeNs)>& T_W_L, TimeNs t_ns,
-                       double duration_s = 0.1, double azimuth_step_deg = 0.2, double range_noise_m = 0.0) {
+                       double duration_s = 0.1, double azimuth_step_deg = 0.2, double range_noise_m = 0.0,
+                       double beam_divergence_rad = 0.0) {
   sim::Rng rng(7);
   LidarScan scan;
   scan.t_ns = t_ns;
@@ -65,7 +82,12 @@ inline LidarScan sweep(const Scene& scene, const std::function<SE3(TimeNs)>& T_W
       const Vec3 d_L(std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth),
                      std::sin(elevation));
       const Vec3 d_W = T.rotation() * d_L;
-      const double range = cast(scene, T.translation(), d_W) + range_noise_m * rng.gaussian();
+      const double true_range = cast(scene, T.translation(), d_W);
+      const double cos_incidence = cos_incidence_inside(scene.room, T * (true_range * d_L), d_W);
+      const double tan_incidence = std::min(10.0, std::sqrt(std::max(0.0, 1.0 - cos_incidence * cos_incidence)) /
+                                                      std::max(cos_incidence, 1e-9));
+      const double sigma_m = std::hypot(range_noise_m, 0.5 * true_range * beam_divergence_rad * tan_incidence);
+      const double range = true_range + sigma_m * rng.gaussian();
       const Vec3 p_L = range * d_L;
       LidarPoint p;
       p.x = static_cast<float>(p_L.x());

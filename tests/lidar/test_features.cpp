@@ -96,6 +96,32 @@ TEST(Features, RangeNoiseOnNearbyWallsGivesNoEdges) {
   EXPECT_GT(on_near_corners, 20);
 }
 
+// Down a corridor the side walls are swept at ever more grazing angles, where a real beam's footprint
+// spreads the range (3 mrad: 4 cm at 10 m and 80 deg). The edge test counts that spread as noise; without it
+// the spread makes noise "edges" all along the walls, which hide the corridor's degeneracy
+// (LidarMapper.KeepsThePriorAlongTheLoopCorridor with the simulator's return model). The floor and ceiling
+// keep some: their incidence is read along the ring, which runs across a downward beam (features.cpp).
+TEST(Features, ObliqueFootprintSpreadGivesNoEdgesOnTheWalls) {
+  const test::Scene corridor{{Vec3(-60, -1, -1.2), Vec3(40, 1, 1.8)}, {}};
+  const LidarScan scan = test::sweep(corridor, [](TimeNs) { return SE3(); }, 0, 0.1, 0.2, 0.02, 0.003);
+  const auto noise_edges = [&](const FeatureConfig& config) {
+    std::pair<int, int> walls_and_rest{0, 0};
+    for (const FeaturePoint& e : extract_features(scan, RingConfig{}, config).edges) {
+      if (test::distance_to_scene_edges(corridor, e.p_L) < 0.1) continue;
+      (std::abs(e.p_L.y()) > 0.9 ? walls_and_rest.first : walls_and_rest.second) += 1;
+    }
+    return walls_and_rest;
+  };
+  FeatureConfig spread_ignored;
+  spread_ignored.beam_divergence_rad = 0.0;
+  const auto [walls, rest] = noise_edges(FeatureConfig{});
+  const auto [walls_ignored, rest_ignored] = noise_edges(spread_ignored);
+  std::printf("[features] noise edges on the walls / floor and ceiling: %d / %d with the footprint spread counted, "
+              "%d / %d without\n", walls, rest, walls_ignored, rest_ignored);
+  EXPECT_LE(walls, 5);
+  EXPECT_GT(walls_ignored, 10 * std::max(walls, 5));
+}
+
 TEST(Features, CountsFollowTheConfig) {
   const LidarScan scan = static_sweep(test::box_room(), SE3());
   FeatureConfig config;
