@@ -115,6 +115,12 @@ std::vector<ImuSample>::const_iterator first_sample_after(const std::vector<ImuS
   return std::upper_bound(samples.begin(), samples.end(), t_ns, [](TimeNs t, const ImuSample& s) { return t < s.t_ns; });
 }
 
+std::vector<ImuSample> samples_for_frame(const std::vector<ImuSample>& samples, TimeNs t_ns, double max_step_s) {
+  auto end = first_sample_after(samples, t_ns);
+  if (end != samples.end() && end != samples.begin() && ns_to_s(end->t_ns - std::prev(end)->t_ns) > max_step_s) ++end;
+  return {samples.begin(), end};
+}
+
 void drop_samples_before(std::vector<ImuSample>& samples, TimeNs t_ns) {
   const auto first_after = first_sample_after(samples, t_ns);
   if (first_after != samples.begin()) samples.erase(samples.begin(), first_after - 1);

@@ -73,6 +73,11 @@ double integrate_samples(const std::vector<ImuSample>& samples, TimeNs t0_ns, Ti
 
 // The first of the time-sorted samples after t_ns (end() when none is).
 std::vector<ImuSample>::const_iterator first_sample_after(const std::vector<ImuSample>& samples, TimeNs t_ns);
+// The samples a frame at t_ns is integrated with: those up to t_ns, and the next one only when it ends an
+// IMU gap (an interval above max_step_s, interpolated across as ImuGapModel says). Whether the next sample has
+// arrived when the frame is integrated then does not matter: offline it has not (a frame is released before
+// the sample that passes it), live it may have (a late frame), and both give the same state.
+std::vector<ImuSample> samples_for_frame(const std::vector<ImuSample>& samples, TimeNs t_ns, double max_step_s);
 // Drops the samples before the last one at or before t_ns: what integrating from t_ns on still needs.
 void drop_samples_before(std::vector<ImuSample>& samples, TimeNs t_ns);
 

@@ -56,7 +56,9 @@ void Vio::add_frame(const FrontendOutput& frame) {
   const SE3 T_W_I_old = propagator_.state_at(join_t_ns).T_W_I();
   const NavState& x = smoother_.newest();
   Preintegration preint(x.bias_gyro_rad_s, x.bias_accel_m_s2, calib_.imu);
-  const double imu_gap_s = integrate_samples(imu_, x.t_ns, frame.t_ns, preint, config_.imu_gap);
+  const double imu_gap_s =
+      integrate_samples(samples_for_frame(imu_, frame.t_ns, config_.imu_gap.max_step_s), x.t_ns, frame.t_ns, preint,
+                        config_.imu_gap);
   smoother_.add_frame(preint, frame);
   const VioLoss loss = loss_check_.check(smoother_.newest(), smoother_.newest_covariance(),
                                          static_cast<int>(frame.matches.size()), smoother_.stats().landmarks,

@@ -140,5 +140,30 @@ TEST(ImuSamples, DroppingBeforeATimeKeepsTheSampleWhoseIntervalHoldsIt) {
   EXPECT_EQ(kept.size(), 4u);
 }
 
+// A frame between two samples is integrated the same whether the next sample has arrived or not (live and
+// offline agree), unless that sample ends an IMU gap: across a gap it is interpolated towards.
+TEST(ImuSamples, AFrameIsIntegratedWithTheSamplesUpToItAndTheOneEndingAGap) {
+  std::vector<ImuSample> samples;
+  for (const TimeNs t : {0, 5'000'000, 10'000'000, 15'000'000})
+    samples.push_back(ImuSample{t, Vec3(0.01 * t * 1e-6, 0, 0), Vec3(0, 0, 9.81)});
+  const double max_step_s = 0.012;
+  const std::vector<ImuSample> known = samples_for_frame(samples, 8'000'000, max_step_s);
+  ASSERT_EQ(known.size(), 2u);  // 0 and 5 ms: the 10 ms sample may or may not have arrived live
+  EXPECT_EQ(known.back().t_ns, 5'000'000);
+  const auto integrate = [](const std::vector<ImuSample>& s) {
+    Preintegration p(Vec3::Zero(), Vec3::Zero(), ImuNoise{});
+    integrate_samples(s, 0, 8'000'000, p);
+    return p.delta_R();
+  };
+  const std::vector<ImuSample> arrived(samples.begin(), samples.begin() + 3), not_yet(samples.begin(), samples.begin() + 2);
+  EXPECT_EQ(integrate(samples_for_frame(arrived, 8'000'000, max_step_s)),
+            integrate(samples_for_frame(not_yet, 8'000'000, max_step_s)));
+  EXPECT_NE(integrate(arrived), integrate(not_yet));  // what the raw samples would have given
+  // A gap from 5 to 25 ms: the sample ending it is kept.
+  std::vector<ImuSample> gapped = {samples[0], samples[1], ImuSample{25'000'000, Vec3::Zero(), Vec3(0, 0, 9.81)}};
+  EXPECT_EQ(samples_for_frame(gapped, 8'000'000, max_step_s).size(), 3u);
+  EXPECT_EQ(samples_for_frame(samples, 15'000'000, max_step_s).size(), 4u);
+}
+
 }  // namespace
 }  // namespace vilslam
