@@ -16,6 +16,7 @@ constexpr float kMaxIntensity = 255.0f;
 
 // A beam's hit before the sensor's return model: range 0 when the ray hit nothing.
 struct Hit {
+  Vec3 dir_L = Vec3::Zero();
   double range_m = 0;
   float reflectivity = 0;
   float cos_incidence = 0;
@@ -36,10 +37,12 @@ LidarScan simulate_sweep(const World& world, const LidarSimConfig& config, TimeN
   tbb::parallel_for(tbb::blocked_range<int>(0, columns, 32), [&](const tbb::blocked_range<int>& range) {
     for (int k = range.begin(); k < range.end(); ++k) {
       for (int beam = 0; beam < beams; ++beam) {
-        const Vec3 dir_W = poses[k].quat() * beam_direction_L(config, beam, k, t_start_ns);
+        const Vec3 dir_L = beam_direction_L(config, beam, k, t_start_ns);
+        const Vec3 dir_W = poses[k].quat() * dir_L;
         const auto hit = world.raycast(poses[k].translation(), dir_W, config.max_range_m);
         if (!hit) continue;
         Hit& h = hits[static_cast<std::size_t>(k) * beams + beam];
+        h.dir_L = dir_L;
         h.range_m = hit->range_m;
         h.reflectivity = hit->reflectivity;
         h.cos_incidence = static_cast<float>(std::abs(hit->normal_W.dot(dir_W)));
@@ -60,7 +63,7 @@ LidarScan simulate_sweep(const World& world, const LidarSimConfig& config, TimeN
         const double range = returned_range_m(config.returns, config.range_noise_sigma_m, h.range_m, neighbour_m,
                                               h.reflectivity, h.cos_incidence, noise_seed, index);
         if (range < config.min_range_m || range > config.max_range_m) continue;
-        const Vec3 p_L = range * beam_direction_L(config, beam, k, t_start_ns);
+        const Vec3 p_L = range * h.dir_L;
         LidarPoint& point = points[index].emplace();
         point.x = static_cast<float>(p_L.x());
         point.y = static_cast<float>(p_L.y());
