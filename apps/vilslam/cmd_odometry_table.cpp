@@ -1,4 +1,4 @@
-// `vilslam odometry-table --work DIR [--presets a,b] [--seed S] [--preview] [--realistic-sensors] [--config RUN_YAML] [--map-voxel M |
+// `vilslam odometry-table --work DIR [--presets a,b] [--seed S] [--preview] [--ideal-sensors] [--config RUN_YAML] [--map-voxel M |
 // --no-maps] [--reuse-runs] [--out FILE] [--note TEXT]`: simulates (or reuses) each preset, runs `vil` and
 // `lidar-only` (or, with --reuse-runs, reads a run folder made with the same config), and
 // writes the paper's Table I with odometry, loop-closed drift, loops and the MRE of the dense maps
@@ -47,7 +47,7 @@ struct Options {
   std::vector<std::string> presets = {"highbay", "hallway", "tunnel"};
   std::uint64_t seed = 1;
   bool preview = false;
-  bool realistic_sensors = false;  // simulate with sensor realism (docs/simulator.md)
+  bool ideal_sensors = false;  // simulate without sensor realism (docs/simulator.md)
   std::string config_path;  // run YAML of both runs; empty: built-in defaults
   double map_voxel_m = 0.05;  // voxels of the dense maps the MRE is measured on
   bool no_maps = false;
@@ -79,10 +79,10 @@ std::string prepare_dataset(const fs::path& data, const std::string& preset, con
   request.preview = o.preview;
   spdlog::info("odometry-table: simulating {} (seed {}) into {}", preset, o.seed, data.string());
   sim::SimConfig config;
-  config.sensor_realism = o.realistic_sensors;
+  config.sensor_realism = !o.ideal_sensors;
   sim::simulate(config, request);
   return "simulated, seed " + std::to_string(o.seed) + (o.preview ? ", preview" : "") +
-         (o.realistic_sensors ? ", realistic sensors" : "");
+         (o.ideal_sensors ? ", ideal sensors" : "");
 }
 
 // What the table needs of one run, from the run itself or from its output folder.
@@ -279,7 +279,7 @@ std::string command_line(const Options& o) {
   for (const std::string& p : o.presets) presets += (presets.empty() ? "" : ",") + p;
   std::string cmd = "vilslam odometry-table --work " + o.work + " --presets " + presets + " --seed " +
                     std::to_string(o.seed) + (o.preview ? " --preview" : "") +
-                    (o.realistic_sensors ? " --realistic-sensors" : "") + (o.config_path.empty() ? "" : " --config " + o.config_path) +
+                    (o.ideal_sensors ? " --ideal-sensors" : "") + (o.config_path.empty() ? "" : " --config " + o.config_path) +
                     (o.no_maps ? std::string(" --no-maps") : " --map-voxel " + format_voxel(o.map_voxel_m)) +
                     (o.reuse_runs ? " --reuse-runs" : "") +
                     " --out " + o.out;
@@ -314,8 +314,8 @@ vilslam::cli::Command reg("odometry-table",
   app.add_option("--presets", o->presets, "Comma-separated presets")->delimiter(',')->capture_default_str();
   app.add_option("--seed", o->seed, "Seed of the presets simulated here")->capture_default_str();
   app.add_flag("--preview", o->preview, "Simulate only the preview seconds (quick check, the route does not close)");
-  app.add_flag("--realistic-sensors", o->realistic_sensors,
-               "Simulate with sensor realism (`vilslam simulate --realistic-sensors`; reused folders are taken as they are)");
+  app.add_flag("--ideal-sensors", o->ideal_sensors,
+               "Simulate without sensor realism (`vilslam simulate --ideal-sensors`; reused folders are taken as they are)");
   app.add_option("--config", o->config_path, "Run YAML of the vil and lidar-only runs (as `vilslam run --config`)");
   auto* voxel = app.add_option("--map-voxel", o->map_voxel_m, "Voxel size of the dense maps whose MRE is measured, m")
                     ->check(CLI::PositiveNumber)

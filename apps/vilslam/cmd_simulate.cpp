@@ -22,7 +22,7 @@ struct Options {
   std::string trajectory;
   std::string imu;
   bool report = false;
-  bool realistic_sensors = false;
+  bool ideal_sensors = false;
   bool overwrite = false;
   std::string lidar;
 };
@@ -63,15 +63,15 @@ vilslam::cli::Command reg("simulate", "Simulate a scenario as a stereo + IMU + L
       ->needs(trajectory);
   app.add_option("--lidar", o->lidar, "LiDAR model, replacing the config's lidar section (docs/simulator.md)")
       ->check(CLI::IsMember({"vlp16", "hesai128", "mid360"}));
-  app.add_flag("--realistic-sensors", o->realistic_sensors,
-               "Calibration errors, missed LiDAR echoes, mixed pixels, vignetting, blur (docs/simulator.md)");
+  app.add_flag("--ideal-sensors", o->ideal_sensors,
+               "No calibration errors, missed LiDAR echoes, mixed pixels or vignetting (docs/simulator.md)");
   app.add_flag("--report", o->report, "Print a table of the sequence and write DIR/report.json");
   app.add_flag("--overwrite", o->overwrite, "Replace an existing output folder");
   return [o, world_seed, route_start, route_offset, laps]() {
     using namespace vilslam::sim;
     SimConfig config = o->config.empty() ? SimConfig{} : load_sim_config(o->config);
     if (!o->lidar.empty()) config.lidar = lidar_sensor(o->lidar);
-    if (o->realistic_sensors) config.sensor_realism = true;
+    if (o->ideal_sensors) config.sensor_realism = false;
     SimulateRequest request;
     request.scenario = parse_scenario(o->scenario);
     if (!o->trajectory.empty() && request.scenario != Scenario::kRoom)

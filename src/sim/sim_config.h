@@ -42,8 +42,9 @@ struct SimConfig {
 
   FaultConfig faults;
   // Sensor realism (docs/simulator.md): the LiDAR's return model, the render's vignetting and blur and the
-  // calibration errors below apply only when this is on (`sensor_realism: true`, `--realistic-sensors`).
-  bool sensor_realism = false;
+  // calibration errors below apply while this is on, the default (`sensor_realism: false` or `--ideal-sensors`
+  // turn it off).
+  bool sensor_realism = true;
   CalibrationErrors calibration_errors;        // what the written calibration does not say
   double preview_duration_s = 1.5;
   double model_spacing_m = 0.05;               // reference model point spacing

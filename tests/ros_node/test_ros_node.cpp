@@ -73,9 +73,9 @@ TEST(RosNode, LiveNodePublishesTheOfflineTrajectory) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   const fs::path data = dir / "room", bag = dir / "room.bag";
-  // Realistic sensors: the camera's 3 ms clock offset puts the frames between IMU samples, where a live frame
+  // Realistic sensors (the default): the camera's 3 ms clock offset puts the frames between IMU samples, where a live frame
   // that arrives after the next sample must still give the offline state (Vio's samples_for_frame).
-  ASSERT_EQ(test::run_cli("simulate room --length 8 --seed 2 --realistic-sensors --out " + data.string()).exit_code, 0);
+  ASSERT_EQ(test::run_cli("simulate room --length 8 --seed 2 --out " + data.string()).exit_code, 0);
   const auto exported = test::run_cli("export-bag " + data.string() + " --out " + bag.string());
   ASSERT_EQ(exported.exit_code, 0) << exported.output;
   const auto offline = test::run_cli("run --mode vil " + data.string() + " --out " + (dir / "offline").string());

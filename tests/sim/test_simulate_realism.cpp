@@ -1,5 +1,5 @@
 // Sensor realism reaches the data and never the calibration: the same preview simulated with and without
-// --realistic-sensors writes the same calibration files, while the sweeps lose echoes and the stamps move.
+// --ideal-sensors writes the same calibration files, while the sweeps lose echoes and the stamps move.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -37,8 +37,8 @@ TEST(SimulateRealism, ReachesTheDataAndNotTheCalibration) {
   std::ofstream(cfg) << "camera: {width_px: 188, height_px: 120, fx: 115, fy: 115, cx: 93.5, cy: 59.5}\n"
                         "preview_duration_s: 0.6\n";
   const std::string common = "simulate outdoor --preview --seed 4 --config " + cfg.string() + " --out ";
-  ASSERT_EQ(test::run_cli(common + (dir / "ideal").string()).exit_code, 0);
-  ASSERT_EQ(test::run_cli(common + (dir / "real").string() + " --realistic-sensors").exit_code, 0);
+  ASSERT_EQ(test::run_cli(common + (dir / "ideal").string() + " --ideal-sensors").exit_code, 0);
+  ASSERT_EQ(test::run_cli(common + (dir / "real").string()).exit_code, 0);
   for (const char* file : {"rig.yaml", "mav0/cam0/sensor.yaml", "mav0/cam1/sensor.yaml", "mav0/imu0/sensor.yaml",
                            "mav0/lidar0/sensor.yaml", "mav0/imu0/data.csv", "groundtruth.tum"})
     EXPECT_EQ(test::read_file_bytes(dir / "ideal" / file), test::read_file_bytes(dir / "real" / file)) << file;
