@@ -1,5 +1,6 @@
 #include "frontend/frontend.h"
 
+#include <opencv2/imgproc.hpp>
 #include <string>
 
 #include "common/error.h"
@@ -32,6 +33,16 @@ DescribedFeatures describe(const cv::Mat& image, std::vector<cv::Point2f>* corne
   return features;
 }
 
+// Both images after CLAHE (FrontendConfig::clahe_clip_limit).
+StereoFrame equalized(const StereoFrame& frame, const FrontendConfig& config) {
+  const cv::Ptr<cv::CLAHE> clahe = cv::createCLAHE(config.clahe_clip_limit, cv::Size(config.clahe_tiles, config.clahe_tiles));
+  StereoFrame out;
+  out.t_ns = frame.t_ns;
+  clahe->apply(frame.left, out.left);
+  clahe->apply(frame.right, out.right);
+  return out;
+}
+
 }  // namespace
 
 Frontend::Frontend(const RigCalibration& calib, const FrontendConfig& config)
@@ -47,15 +58,16 @@ FrontendOutput Frontend::process(const StereoFrame& frame) {
     throw InputError(source, "not after the previous pair (t_ns=" + std::to_string(prev_t_ns_) + ")");
   }
   stats_ = FrontendStats{};
-  ImagePyramid left = build_klt_pyramid(frame.left, config_);
-  ImagePyramid right = build_klt_pyramid(frame.right, config_);
+  const StereoFrame input = config_.clahe_clip_limit > 0 ? equalized(frame, config_) : frame;
+  ImagePyramid left = build_klt_pyramid(input.left, config_);
+  ImagePyramid right = build_klt_pyramid(input.right, config_);
   std::vector<Track> tracks;
   if (initialized_) tracks = track_previous(left, right);
   FrontendOutput output;
   output.t_ns = frame.t_ns;
   output.tracked = static_cast<int>(tracks.size());
   if (output.tracked < config_.min_tracked_matches) {
-    const std::vector<Track> fresh = extract_new(frame, left, right, tracks);
+    const std::vector<Track> fresh = extract_new(input, left, right, tracks);
     output.extracted = static_cast<int>(fresh.size());
     tracks.insert(tracks.end(), fresh.begin(), fresh.end());
   }

@@ -8,6 +8,11 @@
 namespace vilslam {
 
 struct FrontendConfig {
+  // Contrast-limited adaptive histogram equalization of both images before anything else (cv::CLAHE, as
+  // VINS-Mono's `equalize`): evens out vignetting and exposure changes across the image. Clip limit > 0
+  // turns it on (3 in VINS-Mono); the image is cut into clahe_tiles x clahe_tiles tiles.
+  double clahe_clip_limit = 0;
+  int clahe_tiles = 8;
   // Extraction runs when fewer tracked stereo matches than this survive (and on the first pair).
   int min_tracked_matches = 150;
   // Shi-Tomasi (cv::goodFeaturesToTrack) per image.

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "common/error.h"
@@ -56,6 +58,44 @@ TEST(Frontend, StereoMatchesAreTheTrueCorrespondences) {
       EXPECT_LT((rig.cam1.pixel_to_normalized(m.right_px) - m.right_norm).norm(), 1e-12);
     }
   }
+}
+
+// A strong vignetting (brightness 0.15 + 0.85 cos^4 of the angle off the axis) darkens the image's outer part;
+// with the corner count capped, the strongest corners then crowd the centre. CLAHE evens the contrast out,
+// and the outer stereo matches come back, still true correspondences.
+TEST(Frontend, ClaheKeepsTheMatchesOfAVignettedImage) {
+  const SyntheticSequence seq;
+  const auto vignetted = [&](cv::Mat image, const CameraIntrinsics& cam) {
+    for (int v = 0; v < image.rows; ++v) {
+      for (int u = 0; u < image.cols; ++u) {
+        const double tan2 = (std::pow((u - cam.cx) / cam.fx, 2) + std::pow((v - cam.cy) / cam.fy, 2));
+        const double cos4 = 1.0 / ((1 + tan2) * (1 + tan2));
+        image.at<uchar>(v, u) = cv::saturate_cast<uchar>(image.at<uchar>(v, u) * (0.15 + 0.85 * cos4));
+      }
+    }
+    return image;
+  };
+  const auto outer_matches = [&](double clip_limit) {
+    FrontendConfig config;
+    config.clahe_clip_limit = clip_limit;
+    Frontend frontend(seq.calib, config);
+    StereoFrame f = seq.frame(0);
+    f.left = vignetted(f.left, seq.calib.cam0);
+    f.right = vignetted(f.right, seq.calib.cam1);
+    const FrontendOutput out = frontend.process(f);
+    int outer = 0;
+    for (const StereoMatch& m : out.matches) {
+      const Vec3 p_C1 = frontend.rig().T_C1_C0 * (seq.T_W_C0(0).inverse() * seq.point_W(0, m));
+      Eigen::Vector2d right_px;
+      EXPECT_TRUE(frontend.rig().cam1.project(p_C1, &right_px));
+      EXPECT_LT((right_px - m.right_px).norm(), 1.0) << "clip " << clip_limit;
+      outer += (m.left_px - Eigen::Vector2d(seq.calib.cam0.cx, seq.calib.cam0.cy)).norm() > 250;
+    }
+    return outer;
+  };
+  const int without = outer_matches(0), with = outer_matches(3.0);
+  std::printf("matches farther than 250 px from the centre: %d without CLAHE, %d with\n", without, with);
+  EXPECT_GT(with, without + without / 4);
 }
 
 TEST(Frontend, TracksKeepTheirIdsAndFollowTheirPoint) {
