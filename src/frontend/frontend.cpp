@@ -35,7 +35,8 @@ DescribedFeatures describe(const cv::Mat& image, std::vector<cv::Point2f>* corne
 
 // Both images after CLAHE (FrontendConfig::clahe_clip_limit).
 StereoFrame equalized(const StereoFrame& frame, const FrontendConfig& config) {
-  const cv::Ptr<cv::CLAHE> clahe = cv::createCLAHE(config.clahe_clip_limit, cv::Size(config.clahe_tiles, config.clahe_tiles));
+  const cv::Ptr<cv::CLAHE> clahe =
+      cv::createCLAHE(config.clahe_clip_limit, cv::Size(config.clahe_tiles, config.clahe_tiles));
   StereoFrame out;
   out.t_ns = frame.t_ns;
   clahe->apply(frame.left, out.left);

@@ -20,8 +20,8 @@ inline const std::string& highbay_preview() {
     const std::filesystem::path dir =
         process_temp_root() / "map_highbay_seed3";
     std::filesystem::remove_all(dir);
-    const CliResult sim =
-        run_cli("simulate highbay --preview --seed " + std::to_string(kHighbaySeed) + " --ideal-sensors --out " + dir.string());
+    const CliResult sim = run_cli("simulate highbay --preview --seed " + std::to_string(kHighbaySeed) +
+                                  " --ideal-sensors --out " + dir.string());
     EXPECT_EQ(sim.exit_code, 0) << sim.output;
     return sim.exit_code == 0 ? dir.string() : std::string();
   }();
