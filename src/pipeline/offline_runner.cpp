@@ -202,7 +202,9 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
             system->push_imu(data);
           }
           if constexpr (std::is_same_v<T, StereoFrame>) {
-            last_frame_t_ns = data.t_ns + calib.cam_time_offset_ns;
+            // Online the offset may move by up to max_abs_offset_s from the calibration's.
+            last_frame_t_ns = data.t_ns + calib.cam_time_offset_ns +
+                              (config.time_offset.online ? s_to_ns(config.time_offset.max_abs_offset_s) : 0);
             ++frames_read;
             system->push_stereo(std::move(data));
           }
@@ -217,6 +219,11 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
   if (clock && !system->failed()) release_until(held_sweeps.empty() ? last_t_ns : held_sweeps.back().end_t_ns());
   end_segment();
   result.time_offset = time_offset;
+  if (!result.time_offset_online.empty()) {
+    const OnlineTimeOffsetUpdate& last = result.time_offset_online.back();
+    spdlog::info("camera-IMU time offset estimated online: {:.3f} ms at the last of {} estimates ({} intervals)",
+                 1e3 * last.applied_offset_s, result.time_offset_online.size(), last.estimate.intervals);
+  }
   if (stats) {
     stats->dropped_frames = dropped_frames;
     stats->dropped_sweeps = dropped_sweeps;

@@ -112,6 +112,17 @@ std::string timing_samples_csv(const std::vector<TimingSeries>& series) {
   return out.str();
 }
 
+// time_offset_online.csv: every online estimate of the camera-IMU time offset and the offset it set, one row each.
+std::string time_offset_online_csv(const std::vector<OnlineTimeOffsetUpdate>& updates) {
+  std::ostringstream out;
+  out << std::setprecision(17) << "t_ns,cam_time_offset_s,applied_offset_s,intervals,rms_rad,rms_zero_offset_rad\n";
+  for (const OnlineTimeOffsetUpdate& u : updates) {
+    out << u.t_ns << ',' << u.estimate.offset_s << ',' << u.applied_offset_s << ',' << u.estimate.intervals << ','
+        << u.estimate.rms_rad << ',' << u.estimate.rms_zero_offset_rad << '\n';
+  }
+  return out.str();
+}
+
 // The estimated camera-IMU time offset (t_imu = t_cam + offset) and how well it explains the rotations.
 std::string time_offset_json(const TimeOffsetEstimate& e) {
   JsonWriter json;
@@ -248,6 +259,9 @@ void write_run_outputs(const std::string& out_dir, const OfflineRunConfig& confi
   write_file_atomic((partial / "timings.json").string(), timings_json(mode, result, series));
   write_file_atomic((partial / "timing_samples.csv").string(), timing_samples_csv(series));
   if (result.time_offset) write_file_atomic((partial / "time_offset.json").string(), time_offset_json(*result.time_offset));
+  if (!result.time_offset_online.empty()) {
+    write_file_atomic((partial / "time_offset_online.csv").string(), time_offset_online_csv(result.time_offset_online));
+  }
   write_file_atomic((partial / "config.yaml").string(), run_config_yaml(config));
   publish_directory(partial.string(), out);
 }

@@ -70,6 +70,7 @@ void append_segment(OfflineRunResult& run, OfflineRunResult&& segment, TimeNs st
   append(run.matches_per_frame, std::move(segment.matches_per_frame));
   append(run.frontend_ms, std::move(segment.frontend_ms));
   append(run.smoother_ms, std::move(segment.smoother_ms));
+  append(run.time_offset_online, std::move(segment.time_offset_online));
   run.imu_samples += segment.imu_samples;
   append(run.lidar, std::move(segment.lidar));
   run.unmapped_scans += segment.unmapped_scans;

@@ -82,6 +82,14 @@ struct RunSegment {
   std::size_t map_candidates = 0, map_candidates_accepted = 0, map_loops = 0;
 };
 
+// An online estimate of the camera-IMU time offset (time_offset.online) and the offset it set for the frames after it.
+struct OnlineTimeOffsetUpdate {
+  TimeNs t_ns = 0;  // IMU-clock time of the frame whose rotation completed the estimate
+  TimeOffsetEstimate estimate;
+  // The estimate, its change limited to a quarter of the frame interval so that frame times keep increasing.
+  double applied_offset_s = 0;
+};
+
 struct OfflineRunResult {
   Trajectory camera_states;  // T_W_I of every optimized stereo-frame state (IMU clock)
   std::vector<VioStatusRecord> vio_status;  // what each of those states went through (vio_status.csv)
@@ -95,6 +103,7 @@ struct OfflineRunResult {
   std::size_t unmapped_scans = 0;  // vil: sweeps no VIO pose covered
   std::optional<LoopClosureOutput> loop;  // vil: odometry, loop-corrected poses, loop candidates
   std::optional<TimeOffsetEstimate> time_offset;  // when estimated (config.time_offset.enabled) and observable
+  std::vector<OnlineTimeOffsetUpdate> time_offset_online;  // config.time_offset.online: every estimate made
   double data_s = 0;      // time span of the events read (the sensors' time)
   double run_wall_s = 0;  // wall time of run_offline (data_s / run_wall_s > 1: faster than real time)
   std::optional<RealtimeStats> realtime;  // when config.realtime.speed > 0

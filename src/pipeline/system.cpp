@@ -1,10 +1,12 @@
 #include "pipeline/system.h"
 
+#include <algorithm>
 #include <chrono>
 #include <deque>
 #include <limits>
 #include <mutex>
 #include <optional>
+#include <utility>
 #include <variant>
 
 #include "common/error.h"
@@ -12,6 +14,7 @@
 #include "loop/map_file.h"
 #include "pipeline/lidar_feeder.h"
 #include "pipeline/live_propagator.h"
+#include "pipeline/online_time_offset.h"
 #include "pipeline/run_segments.h"
 #include "pipeline/stage.h"
 
@@ -228,17 +231,22 @@ class FrontendSide {
  public:
   FrontendSide(const RigCalibration& calib, const OfflineRunConfig& config, OfflineRunResult* result,
                Stage<VioMessage>* vio)
-      : frontend_(calib, config.frontend), cam_offset_ns_(calib.cam_time_offset_ns), result_(result), vio_(vio) {}
+      : frontend_(calib, config.frontend), cam_offset_ns_(calib.cam_time_offset_ns), result_(result), vio_(vio) {
+    if (config.time_offset.online) online_offset_.emplace(config.time_offset, calib.T_I_C0.rotation());
+  }
 
   void handle(FrontendMessage&& message) {
     if (auto* frame = std::get_if<StereoFrame>(&message)) {
+      const TimeNs t_cam_ns = frame->t_ns;
       frame->t_ns += cam_offset_ns_;
       const auto start = std::chrono::steady_clock::now();
       FrontendOutput out = frontend_.process(*frame);
       result_->frontend_ms.push_back(elapsed_ms(start));
       result_->matches_per_frame.push_back(static_cast<int>(out.matches.size()));
+      if (online_offset_) update_offset(t_cam_ns, frame->t_ns);
       vio_->push(TrackedFrame{std::move(*frame), std::move(out)});
     } else if (auto* sample = std::get_if<ImuSample>(&message)) {
+      if (online_offset_) online_offset_->add_imu(*sample);
       vio_->push(*sample);
     } else {
       vio_->push(std::move(std::get<LidarScan>(message)));
@@ -246,10 +254,25 @@ class FrontendSide {
   }
 
  private:
+  // time_offset.online: the frame's rotation goes to the estimator, and a new estimate moves the frames after it.
+  void update_offset(TimeNs t_cam_ns, TimeNs t_imu_ns) {
+    const FrontendStats& stats = frontend_.last_stats();
+    const std::optional<TimeNs> previous_ns = std::exchange(previous_t_cam_ns_, t_cam_ns);
+    if (!previous_ns || !stats.motion_valid) return;
+    const std::optional<TimeOffsetEstimate> e =
+        online_offset_->add_rotation({*previous_ns, t_cam_ns, stats.T_C0cur_C0prev.rotation().transpose()});
+    if (!e) return;
+    const TimeNs max_change_ns = (t_cam_ns - *previous_ns) / 4;
+    cam_offset_ns_ = std::clamp(s_to_ns(e->offset_s), cam_offset_ns_ - max_change_ns, cam_offset_ns_ + max_change_ns);
+    result_->time_offset_online.push_back({t_imu_ns, *e, ns_to_s(cam_offset_ns_)});
+  }
+
   Frontend frontend_;
   TimeNs cam_offset_ns_;
   OfflineRunResult* result_;
   Stage<VioMessage>* vio_;
+  std::optional<OnlineTimeOffsetEstimator> online_offset_;
+  std::optional<TimeNs> previous_t_cam_ns_;
 };
 
 }  // namespace

@@ -17,7 +17,9 @@ namespace vilslam {
 
 struct TimeOffsetConfig {
   bool enabled = false;          // estimate before the run and use it instead of the calibration's
-  double window_s = 30.0;        // camera intervals from the sequence's first window_s are used
+  bool online = false;           // estimate again as the run goes (pipeline/online_time_offset.h)
+  double update_every_s = 5.0;   // online: seconds of camera time between estimates
+  double window_s = 30.0;        // camera intervals from the sequence's first window_s are used (online: the last)
   double max_abs_offset_s = 0.05;  // searched over [-max, max]
   double grid_step_s = 0.0005;
   double min_rotation_rad_s = 0.1;  // rotation rate the window must reach (else the offset is unobservable)

@@ -13,6 +13,7 @@
 #include "loop/loop_constraints_io.h"
 #include "pipeline/time_offset_pass.h"
 #include "sim/calibration_errors.h"
+#include "delayed_camera_reader.h"
 #include "test_util.h"
 
 namespace vilslam {
@@ -61,35 +62,11 @@ class LoopClosureRun : public ::testing::Test {
 fs::path* LoopClosureRun::data_ = nullptr;
 fs::path* LoopClosureRun::runs_ = nullptr;
 
-// The dataset with every stereo pair stamped delay_ns late (as a camera driver with an unknown latency):
-// the calibration's t_imu = t_cam + offset then needs offset = -delay_ns.
-class DelayedCameraReader : public DatasetReader {
- public:
-  DelayedCameraReader(std::unique_ptr<DatasetReader> inner, TimeNs delay_ns)
-      : inner_(std::move(inner)), delay_ns_(delay_ns) {}
-  std::optional<SensorEvent> next() override {
-    std::optional<SensorEvent> event = inner_->next();
-    if (event && std::holds_alternative<StereoFrame>(event->data)) {
-      event->t_ns += delay_ns_;
-      std::get<StereoFrame>(event->data).t_ns += delay_ns_;
-    }
-    return event;
-  }
-  void rewind() override { inner_->rewind(); }
-  const RigCalibration& calibration() const override { return inner_->calibration(); }
-  const DatasetSummary& summary() const override { return inner_->summary(); }
-  const std::vector<GroundTruthState>& groundtruth() const override { return inner_->groundtruth(); }
-
- private:
-  std::unique_ptr<DatasetReader> inner_;
-  TimeNs delay_ns_;
-};
-
 TEST_F(LoopClosureRun, EstimatesAnUnknownCameraDelayWithinOneMillisecond) {
   // The simulated camera's own clock offset (sensor realism, docs/simulator.md) comes on top of the delay.
   const double own_delay_s = sim::CalibrationErrors{}.camera_time_offset_s;
   for (const TimeNs delay_ns : {5'000'000, -8'000'000}) {
-    DelayedCameraReader reader(open_dataset(data_->string()), delay_ns);
+    test::DelayedCameraReader reader(open_dataset(data_->string()), delay_ns);
     const auto estimate = estimate_sequence_time_offset(reader, FrontendConfig{}, TimeOffsetConfig{});
     ASSERT_TRUE(estimate) << delay_ns;
     EXPECT_NEAR(estimate->offset_s, -(ns_to_s(delay_ns) + own_delay_s), 0.001) << delay_ns;

@@ -1,53 +1,15 @@
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <random>
-
+#include "vio/rotation_recording.h"
 #include "vio/time_offset.h"
 
 namespace vilslam {
 namespace {
 
-// A rig turning about all three axes for 30 s: IMU at 200 Hz (gyro with bias and white noise) and the left
-// camera's frame-to-frame rotations at 20 Hz, captured at IMU time tau and stamped tau - offset_s.
-struct Recording {
-  std::vector<ImuSample> imu;
-  std::vector<CameraRotation> rotations;
-  Mat3 R_I_C0;
-};
-
-Vec3 body_rate(double t) {
-  return Vec3(0.8 * std::sin(2 * M_PI * 0.5 * t), 0.6 * std::sin(2 * M_PI * 0.3 * t + 1.0),
-              1.0 * std::sin(2 * M_PI * 0.7 * t + 2.0));
-}
-
-Recording record(double offset_s, double rate_scale, const Vec3& bias) {
-  Recording r;
-  r.R_I_C0 = so3::exp(Vec3(1.2, -0.4, 0.3));
-  std::mt19937 rng(5);
-  std::normal_distribution<double> gyro_noise(0, 0.002), camera_noise(0, 0.0005);
-  // Orientation on a 1 kHz grid (midpoint integration), from which both sensors read.
-  const double dt = 0.001;
-  std::vector<Mat3> R_W_I{Mat3::Identity()};
-  for (int i = 0; i < 32000; ++i) R_W_I.push_back(R_W_I.back() * so3::exp(rate_scale * body_rate((i + 0.5) * dt) * dt));
-  for (int i = 0; i < 32000; i += 5) {
-    const Vec3 noise(gyro_noise(rng), gyro_noise(rng), gyro_noise(rng));
-    r.imu.push_back({s_to_ns(i * dt), rate_scale * body_rate(i * dt) + bias + noise, Vec3(0, 0, 9.81)});
-  }
-  const int offset_ms = static_cast<int>(std::lround(offset_s * 1000));
-  for (int ms = 100; ms + 50 < 31000; ms += 50) {
-    const int a = ms + offset_ms, b = ms + 50 + offset_ms;  // capture instants on the IMU clock (1 ms grid)
-    const Mat3 R = (R_W_I[a] * r.R_I_C0).transpose() * (R_W_I[b] * r.R_I_C0);
-    const Vec3 noise(camera_noise(rng), camera_noise(rng), camera_noise(rng));
-    r.rotations.push_back({s_to_ns(ms * 1e-3), s_to_ns((ms + 50) * 1e-3), R * so3::exp(noise)});
-  }
-  return r;
-}
-
 TEST(TimeOffset, RecoversTheOffsetAndTheGyroBias) {
   for (const double offset_s : {0.005, -0.012, 0.0}) {
     const Vec3 bias(0.02, -0.01, 0.03);
-    const Recording r = record(offset_s, 1.0, bias);
+    const test::RotationRecording r = test::record_rotations(offset_s, 1.0, bias);
     const auto e = estimate_cam_time_offset(r.rotations, r.imu, r.R_I_C0, TimeOffsetConfig{});
     ASSERT_TRUE(e) << offset_s;
     EXPECT_NEAR(e->offset_s, offset_s, 0.0002) << offset_s;
@@ -59,7 +21,7 @@ TEST(TimeOffset, RecoversTheOffsetAndTheGyroBias) {
 
 TEST(TimeOffset, WrongCameraRotationDoesNotFitAnOffset) {
   // The camera-IMU rotation transposed: the best offset no longer explains the camera's rotations.
-  Recording r = record(0.005, 1.0, Vec3::Zero());
+  test::RotationRecording r = test::record_rotations(0.005, 1.0, Vec3::Zero());
   const auto good = estimate_cam_time_offset(r.rotations, r.imu, r.R_I_C0, TimeOffsetConfig{});
   const auto bad = estimate_cam_time_offset(r.rotations, r.imu, r.R_I_C0.transpose(), TimeOffsetConfig{});
   ASSERT_TRUE(good && bad);
@@ -67,9 +29,9 @@ TEST(TimeOffset, WrongCameraRotationDoesNotFitAnOffset) {
 }
 
 TEST(TimeOffset, RefusesWithoutRotationOrIntervals) {
-  const Recording still = record(0.005, 0.01, Vec3::Zero());  // peak rate 0.01 rad/s
+  const test::RotationRecording still = test::record_rotations(0.005, 0.01, Vec3::Zero());  // peak rate 0.01 rad/s
   EXPECT_FALSE(estimate_cam_time_offset(still.rotations, still.imu, still.R_I_C0, TimeOffsetConfig{}));
-  Recording few = record(0.005, 1.0, Vec3::Zero());
+  test::RotationRecording few = test::record_rotations(0.005, 1.0, Vec3::Zero());
   few.rotations.resize(20);
   EXPECT_FALSE(estimate_cam_time_offset(few.rotations, few.imu, few.R_I_C0, TimeOffsetConfig{}));
 }
