@@ -12,7 +12,7 @@ void OnlineTimeOffsetEstimator::add_imu(const ImuSample& sample) { imu_.push_bac
 std::optional<TimeOffsetEstimate> OnlineTimeOffsetEstimator::add_rotation(const CameraRotation& rotation) {
   rotations_.push_back(rotation);
   const TimeNs now_ns = rotation.t_b_ns;
-  while (rotations_.front().t_a_ns < now_ns - s_to_ns(config_.window_s)) rotations_.pop_front();
+  while (rotations_.front().t_a_ns < now_ns - s_to_ns(config_.online_window_s)) rotations_.pop_front();
   // The gyro is integrated over the intervals shifted by up to max_abs_offset_s (one sample more each side).
   const TimeNs keep_from_ns = rotations_.front().t_a_ns - s_to_ns(config_.max_abs_offset_s);
   while (imu_.size() > 1 && imu_[1].t_ns < keep_from_ns) imu_.pop_front();

@@ -1,7 +1,7 @@
 #pragma once
 // The camera-IMU time offset estimated as the run goes (`time_offset.online`; beyond the paper, which assumes
 // synchronized sensors; VINS-Fusion and OpenVINS estimate it online too, inside their estimators). The frontend's
-// frame-to-frame rotations of the last window_s and the IMU samples over them are matched by the estimator of
+// frame-to-frame rotations of the last online_window_s and the IMU samples over them are matched by the estimator of
 // vio/time_offset.h every update_every_s of camera time, the same estimator as the pass before the run
 // (pipeline/time_offset_pass.h) on the data seen so far. Each estimate moves the frames that follow onto the
 // IMU clock (the frontend side of pipeline/system.cpp).

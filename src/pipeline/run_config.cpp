@@ -15,7 +15,8 @@ YamlFields graph_yaml_fields(loop::GlobalPoseGraphConfig& c) {
 
 YamlFields time_offset_yaml_fields(TimeOffsetConfig& c) {
   return {yaml_value("enabled", c.enabled),     yaml_value("online", c.online),
-          yaml_value("update_every_s", c.update_every_s), yaml_value("window_s", c.window_s),
+          yaml_value("update_every_s", c.update_every_s), yaml_value("online_window_s", c.online_window_s),
+          yaml_value("window_s", c.window_s),
           yaml_value("max_abs_offset_s", c.max_abs_offset_s), yaml_value("grid_step_s", c.grid_step_s),
           yaml_value("min_rotation_rad_s", c.min_rotation_rad_s), yaml_value("min_intervals", c.min_intervals)};
 }
@@ -37,6 +38,7 @@ void validate_time_offset_config(const TimeOffsetConfig& c, const std::string& p
   };
   positive(c.window_s, "window_s");
   positive(c.update_every_s, "update_every_s");
+  positive(c.online_window_s, "online_window_s");
   positive(c.max_abs_offset_s, "max_abs_offset_s");
   positive(c.grid_step_s, "grid_step_s");
   if (!(c.min_rotation_rad_s >= 0)) throw InputError(path, "'time_offset.min_rotation_rad_s' must be >= 0");

@@ -19,7 +19,8 @@ struct TimeOffsetConfig {
   bool enabled = false;          // estimate before the run and use it instead of the calibration's
   bool online = false;           // estimate again as the run goes (pipeline/online_time_offset.h)
   double update_every_s = 5.0;   // online: seconds of camera time between estimates
-  double window_s = 30.0;        // camera intervals from the sequence's first window_s are used (online: the last)
+  double online_window_s = 120.0;  // online: the camera intervals of the last online_window_s are used
+  double window_s = 30.0;        // before the run: camera intervals from the sequence's first window_s are used
   double max_abs_offset_s = 0.05;  // searched over [-max, max]
   double grid_step_s = 0.0005;
   double min_rotation_rad_s = 0.1;  // rotation rate the window must reach (else the offset is unobservable)

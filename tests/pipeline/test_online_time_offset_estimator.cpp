@@ -1,5 +1,5 @@
 // The online camera-IMU time offset estimator (pipeline/online_time_offset.h) on synthetic rotations with a
-// known offset: it answers every update_every_s of camera time from the last window_s of intervals only.
+// known offset: it answers every update_every_s of camera time from the last online_window_s of intervals only.
 #include <gtest/gtest.h>
 
 #include "pipeline/online_time_offset.h"
@@ -11,7 +11,7 @@ namespace {
 TEST(OnlineTimeOffsetEstimator, EstimatesOnItsCadenceFromTheLastWindowOnly) {
   const test::RotationRecording r = test::record_rotations(0.007, 1.0, Vec3(0.01, 0.02, -0.01));
   TimeOffsetConfig config;
-  config.window_s = 10.0;
+  config.online_window_s = 10.0;
   config.update_every_s = 5.0;
   OnlineTimeOffsetEstimator estimator(config, r.R_I_C0);
   std::size_t next_imu = 0;
