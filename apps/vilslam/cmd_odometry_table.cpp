@@ -28,6 +28,7 @@
 #include "eval/odometry_table.h"
 #include "io/cloud_io.h"
 #include "io/dataset.h"
+#include "io/dataset_groundtruth.h"
 #include "io/trajectory_io.h"
 #include "loop/loop_constraints_io.h"
 #include "map/map_builder.h"
@@ -238,11 +239,8 @@ eval::OdometryRow measure_preset(const fs::path& work, const std::string& preset
   eval::OdometryInputs in;
   in.preset = preset;
   in.source = prepare_dataset(data, preset, o);
-  const auto reader = open_dataset(data.string());
-  for (const GroundTruthState& g : reader->groundtruth()) {
-    in.gt_T_W_I.push_back({g.t_ns, g.T_W_I});
-    in.gt_T_W_L.push_back({g.t_ns, g.T_W_I * reader->calibration().T_I_L});
-  }
+  in.gt_T_W_I = dataset_groundtruth(data.string(), GroundTruthFrame::kImu);
+  in.gt_T_W_L = dataset_groundtruth(data.string(), GroundTruthFrame::kLidar);
   if (in.gt_T_W_I.size() < 2) throw InputError(data.string(), "has no ground truth to evaluate against");
   const ModeRun vil = run_mode(data, config, RunMode::kVil, work / (preset + "_vil"), o.reuse_runs);
   const ModeRun lidar_only =

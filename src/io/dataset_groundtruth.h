@@ -1,6 +1,7 @@
 #pragma once
 // A dataset's ground truth as a trajectory of the IMU body (T_W_I) or of the LiDAR (T_W_I T_I_L, with the
-// rig's extrinsic), for comparing LiDAR poses (`vilslam eval --gt DATASET --gt-frame lidar`, `eval-loops`).
+// LiDAR's true mount when the dataset has one, io/groundtruth_mounts.h, else the rig's extrinsic), for comparing
+// LiDAR poses (`vilslam eval --gt DATASET --gt-frame lidar`, `eval-loops`, `eval-map`, `odometry-table`).
 #include <string>
 
 #include "common/types.h"

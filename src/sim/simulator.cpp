@@ -9,8 +9,10 @@
 #include <memory>
 
 #include "common/error.h"
+#include "common/json_writer.h"
 #include "io/dataset_writer.h"
 #include "io/euroc_tables.h"
+#include "io/groundtruth_mounts.h"
 #include "io/trajectory_io.h"
 #include "sim/imu_alignment.h"
 #include "sim/imu_stream_noise.h"
@@ -295,6 +297,10 @@ SequenceReport simulate(const SimConfig& configured, const SimulateRequest& requ
   write_scans(config, request, scene, mounts, imu, writer, kitti, report, stage_progress(image_share, 1.0 - image_share));
   kitti.finish();
   write_tum_copy(imu.groundtruth, staging / "groundtruth.tum");
+  if (config.sensor_realism) {
+    write_file_atomic((staging / kGroundTruthMountsFile).string(),
+                      groundtruth_mounts_yaml({mounts.T_I_C0, mounts.T_I_C1, mounts.T_I_L}));
+  }
   const double spacing_m = request.preview ? std::max(config.model_spacing_m, 0.2) : config.model_spacing_m;
   writer.set_reference_model(scene.world.sample_surfaces(spacing_m));
   writer.finish();

@@ -1,11 +1,15 @@
 // Sensor realism reaches the data and never the calibration: the same preview simulated with and without
-// --ideal-sensors writes the same calibration files, while the sweeps lose echoes and the stamps move.
+// --ideal-sensors writes the same calibration files, while the sweeps lose echoes and the stamps move. The true
+// mounts are written as ground truth, and the LiDAR-frame ground truth goes through them.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 
+#include "common/error.h"
 #include "io/dataset.h"
+#include "io/dataset_groundtruth.h"
+#include "io/groundtruth_mounts.h"
 #include "test_util.h"
 
 namespace vilslam::sim {
@@ -54,6 +58,36 @@ TEST(SimulateRealism, ReachesTheDataAndNotTheCalibration) {
   EXPECT_GT(real.lidar_points, ideal.lidar_points / 2);
   std::printf("[realism] outdoor preview: %zu -> %zu LiDAR points (%.1f %% missed)\n", ideal.lidar_points,
               real.lidar_points, 100.0 * (1.0 - double(real.lidar_points) / ideal.lidar_points));
+
+  // Ground truth only: the true mounts, 0.5 deg and 1 cm off the nominal ones, and the LiDAR-frame ground truth
+  // through the true LiDAR mount. The ideal dataset has no such file and keeps the nominal mount.
+  EXPECT_FALSE(read_groundtruth_mounts((dir / "ideal").string()));
+  const std::optional<GroundTruthMounts> mounts = read_groundtruth_mounts((dir / "real").string());
+  ASSERT_TRUE(mounts);
+  const RigCalibration nominal = open_dataset((dir / "real").string())->calibration();
+  for (const auto& [true_T, nominal_T] : {std::pair{mounts->T_I_C0, nominal.T_I_C0}, {mounts->T_I_L, nominal.T_I_L}}) {
+    const SE3 error = nominal_T.inverse() * true_T;
+    EXPECT_NEAR(so3::log(error.rotation()).norm(), 0.5 * M_PI / 180, 1e-9);
+    EXPECT_NEAR(error.translation().norm(), 0.01, 0.002);
+  }
+  const Trajectory gt_I = dataset_groundtruth((dir / "real").string(), GroundTruthFrame::kImu);
+  const Trajectory gt_L = dataset_groundtruth((dir / "real").string(), GroundTruthFrame::kLidar);
+  ASSERT_EQ(gt_I.size(), gt_L.size());
+  const SE3 T_I_L = gt_I.back().T_W_B.inverse() * gt_L.back().T_W_B;
+  EXPECT_LT((T_I_L.translation() - mounts->T_I_L.translation()).norm(), 1e-9);
+  EXPECT_LT(so3::log(T_I_L.rotation().transpose() * mounts->T_I_L.rotation()).norm(), 1e-9);
+}
+
+TEST(GroundTruthMounts, AnUnreadableFileIsAnErrorNamingIt) {
+  const fs::path dir = test::temp_dir();
+  fs::create_directories(dir / "mav0/state_groundtruth_estimate0");
+  std::ofstream(dir / kGroundTruthMountsFile) << "T_I_C0: [1, 0, 0]\n";
+  try {
+    read_groundtruth_mounts(dir.string());
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("sensor_mounts.yaml"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
