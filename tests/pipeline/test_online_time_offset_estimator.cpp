@@ -27,7 +27,9 @@ TEST(OnlineTimeOffsetEstimator, EstimatesOnItsCadenceFromTheLastWindowOnly) {
   ASSERT_EQ(estimates.size(), 6u);
   for (std::size_t i = 0; i < estimates.size(); ++i) {
     const auto& [t_ns, e] = estimates[i];
-    if (i > 0) EXPECT_EQ(t_ns - estimates[i - 1].first, s_to_ns(5.0));
+    if (i > 0) {
+      EXPECT_EQ(t_ns - estimates[i - 1].first, s_to_ns(5.0));
+    }
     EXPECT_NEAR(e.offset_s, 0.007, 0.001) << i;  // 0.2 ms from 30 s (vio tests); 5-10 s are noisier
     EXPECT_LE(e.intervals, 201) << i;  // 10 s of 20 Hz intervals, not everything seen so far
   }
