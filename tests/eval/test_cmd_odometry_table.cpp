@@ -8,6 +8,7 @@
 
 #include "eval/trajectory_eval.h"
 #include "io/dataset.h"
+#include "io/groundtruth_mounts.h"
 #include "io/trajectory_io.h"
 #include "cli_output.h"
 #include "test_util.h"
@@ -74,10 +75,13 @@ TEST(CmdOdometryTable, PreviewHighbaySimulatesThenReuses) {
             0);
   EXPECT_NE(row.find("| " + fixed3(json_number(test::read_file_bytes(json_se3), "ape", "rmse")) + " / "), std::string::npos) << row;
 
-  // LiDAR-only ATE (se3) against the ground truth in the LiDAR frame, from the written lidar.tum.
+  // LiDAR-only ATE (se3) against the ground truth in the LiDAR frame, from the written lidar.tum. The preview is
+  // simulated with sensor realism: the LiDAR's ground truth goes through its true mount, not the calibration's.
   const auto reader = open_dataset((work / "highbay").string());
+  const std::optional<GroundTruthMounts> mounts = read_groundtruth_mounts((work / "highbay").string());
+  ASSERT_TRUE(mounts);
   Trajectory gt_L;
-  for (const GroundTruthState& g : reader->groundtruth()) gt_L.push_back({g.t_ns, g.T_W_I * reader->calibration().T_I_L});
+  for (const GroundTruthState& g : reader->groundtruth()) gt_L.push_back({g.t_ns, g.T_W_I * mounts->T_I_L});
   eval::TrajectoryEvalConfig se3;
   const eval::TrajectoryEvalReport lidar_only = eval::evaluate_trajectory(
       read_trajectory((work / "highbay_lidar-only/lidar.tum").string(), TrajectoryFormat::kTum), gt_L, se3);
