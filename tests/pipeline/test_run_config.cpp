@@ -37,6 +37,7 @@ TEST(RunConfig, ShippedRigConfigsLoad) {
   EXPECT_EQ(mid360.lidar.lidar.features.method, lidar::FeatureMethod::kNeighbourhood);
   EXPECT_EQ(mid360.lidar.lidar.rings.max_range_m, 70.0);
   EXPECT_EQ(mid360.lidar.lidar.registration.association.max_plane_point_distance_m, 0.05);
+  EXPECT_EQ(mid360.lidar.lidar.registration.tilt_prior_sigma_rad, 0.0);
   EXPECT_EQ(load_run_config(kConfigDir + "run_euroc.yaml").frontend.clahe_clip_limit, 3.0);
   EXPECT_THROW(load_run_config(write_file("lidar_mapper:\n  features:\n    method: rays\n")), InputError);
 }
