@@ -63,6 +63,8 @@ void GlobalPoseGraph::set_up_direction(std::size_t index, const Vec3& up_L, doub
                                 " is not finite and non-zero, its sigma not finite and >= 0, or the pose is not added");
   }
   up_L_[index] = MeasuredUp{up_L.normalized(), std::max(config_.tilt_sigma_rad, sigma_rad)};
+  const double sigma = up_L_[index]->sigma_rad;
+  if (sigma > 0.0) up_offset_.add(up_L_[index]->up_L, poses_[index].T_W_B.rotation(), 1.0 / (sigma * sigma));
 }
 
 void GlobalPoseGraph::add_loop(std::size_t from_index, std::size_t to_index, const SE3& T_from_to,
@@ -75,6 +77,7 @@ void GlobalPoseGraph::add_loop(std::size_t from_index, std::size_t to_index, con
 
 void GlobalPoseGraph::transform(const SE3& T_new_old) {
   for (TimedPose& p : poses_) p.T_W_B = T_new_old * p.T_W_B;
+  up_offset_.rotate_world(T_new_old.rotation());
 }
 
 void GlobalPoseGraph::add_map_loop(const SE3& T_W_from, std::size_t to_index, const SE3& T_from_to,
@@ -154,8 +157,9 @@ CorrectionSummary GlobalPoseGraph::optimize() {
     reduced.add_constraint({m, slot(c.to_index), c.T_from_to, c.information, ConstraintKind::kLoop});
   }
   if (config_.tilt_sigma_rad > 0.0) {
+    const Mat3 R_offset = config_.tilt_offset ? so3::exp(up_offset_.mount()) : Mat3::Identity();
     for (std::size_t k = map_loops_.empty() ? 1 : 0; k < anchors.size(); ++k) {  // a fixed first pose needs none
-      if (const auto& up = up_L_[anchors[k]]) reduced.add_tilt({first + k, up->up_L, up->sigma_rad});
+      if (const auto& up = up_L_[anchors[k]]) reduced.add_tilt({first + k, R_offset * up->up_L, up->sigma_rad});
     }
   }
   PoseGraphOptions options;

@@ -14,6 +14,7 @@
 #include "common/types.h"
 #include "loop/odometry_chain.h"
 #include "loop/pose_graph.h"
+#include "loop/tilt_offset.h"
 
 namespace vilslam::loop {
 
@@ -28,6 +29,13 @@ struct GlobalPoseGraphConfig {
   // 0 = none. Without it a loop can bend the route in roll and pitch to fit one tilted key frame. Chosen on the
   // tuning seeds 1, 2 and 7 (docs/pose_graph.md, "Tilt factors from the VIO").
   double tilt_sigma_rad = 0.005;
+  // Take the LiDAR mount's tilt error out of every tilt factor: the VIO's up reaches L through the calibrated
+  // mount, and a mount a fraction of a degree off tilts it by a rotation fixed in L, which would bend the route
+  // (docs/pose_graph.md, "The mount's tilt in the tilt factors"). Estimated from the rotations, measured up to the
+  // LiDAR's own up, as a part fixed in L plus a part fixed in the world (the map's own tilt): only turns tell them
+  // apart, and without turns the whole goes to the map's tilt, as before. Off by default until measured on the
+  // tuning seeds of every preset (docs/pose_graph.md has the runs so far).
+  bool tilt_offset = false;
   RobustLoss loop_loss = RobustLoss::kHuber;
   // Whitened units. 1 bounds a wrong loop's pull best; 3.5 converges in fewer iterations but lets a wrong
   // loop pull 4x harder (docs/pose_graph.md, "Bounded correction").
@@ -62,7 +70,8 @@ class GlobalPoseGraph {
   std::size_t add_odometry(TimeNs t_ns, const SE3& T_prev_cur, const std::vector<Vec6>& degenerate_directions = {});
   // The pose's up direction R_W_L^T e_z as measured against gravity (the VIO's at the same instant); used when
   // config.tilt_sigma_rad > 0, with the larger of that sigma and the measurement's own (sigma_rad, the VIO's
-  // tilt standard deviation when known). Throws std::invalid_argument on a bad index or a non-finite or zero vector.
+  // tilt standard deviation when known). With config.tilt_offset its rotation from the pose's own up direction at
+  // this moment joins the mean offset. Throws std::invalid_argument on a bad index or a non-finite or zero vector.
   void set_up_direction(std::size_t index, const Vec3& up_L, double sigma_rad = 0.0);
   // A loop factor measuring T_from_to = (T_W_from)^-1 T_W_to; throws std::invalid_argument on a bad index
   // or an information matrix that is not symmetric positive definite.
@@ -99,6 +108,7 @@ class GlobalPoseGraph {
     double sigma_rad;  // of the tilt factor
   };
   std::vector<std::optional<MeasuredUp>> up_L_;  // measured up direction per pose
+  UpOffsetSamples up_offset_;  // config.tilt_offset: the mount's tilt error in the measured up directions
   std::vector<RelativePoseConstraint> loops_;
   struct MapLoop {
     SE3 T_W_from;
