@@ -33,8 +33,8 @@ struct GlobalPoseGraphConfig {
   // mount, and a mount a fraction of a degree off tilts it by a rotation fixed in L, which would bend the route
   // (docs/pose_graph.md, "The mount's tilt in the tilt factors"). Estimated from the rotations, measured up to the
   // LiDAR's own up, as a part fixed in L plus a part fixed in the world (the map's own tilt): only turns tell them
-  // apart, and without turns the whole goes to the map's tilt, as before. Off by default until measured on the
-  // tuning seeds of every preset (docs/pose_graph.md has the runs so far).
+  // apart, and without turns the whole goes to the map's tilt, as before. Off by default: worse on the tuning
+  // seeds (docs/pose_graph.md).
   bool tilt_offset = false;
   RobustLoss loop_loss = RobustLoss::kHuber;
   // Whitened units. 1 bounds a wrong loop's pull best; 3.5 converges in fewer iterations but lets a wrong
