@@ -64,7 +64,9 @@ void GlobalPoseGraph::set_up_direction(std::size_t index, const Vec3& up_L, doub
   }
   up_L_[index] = MeasuredUp{up_L.normalized(), std::max(config_.tilt_sigma_rad, sigma_rad)};
   const double sigma = up_L_[index]->sigma_rad;
-  if (sigma > 0.0) up_offset_.add(up_L_[index]->up_L, poses_[index].T_W_B.rotation(), 1.0 / (sigma * sigma));
+  if (config_.tilt_offset && sigma > 0.0) {
+    up_offset_.add(up_L_[index]->up_L, poses_[index].T_W_B.rotation(), 1.0 / (sigma * sigma));
+  }
 }
 
 void GlobalPoseGraph::add_loop(std::size_t from_index, std::size_t to_index, const SE3& T_from_to,

@@ -70,8 +70,9 @@ class GlobalPoseGraph {
   std::size_t add_odometry(TimeNs t_ns, const SE3& T_prev_cur, const std::vector<Vec6>& degenerate_directions = {});
   // The pose's up direction R_W_L^T e_z as measured against gravity (the VIO's at the same instant); used when
   // config.tilt_sigma_rad > 0, with the larger of that sigma and the measurement's own (sigma_rad, the VIO's
-  // tilt standard deviation when known). Its rotation to the pose's own up direction at this moment is a sample of the
-  // mount's tilt error (loop/tilt_offset.h), used with config.tilt_offset. Throws std::invalid_argument on a bad index or a non-finite or zero vector.
+  // tilt standard deviation when known). With config.tilt_offset, its rotation to the pose's own up direction at
+  // this moment is a sample of the mount's tilt error (loop/tilt_offset.h). Throws std::invalid_argument on a bad
+  // index or a non-finite or zero vector.
   void set_up_direction(std::size_t index, const Vec3& up_L, double sigma_rad = 0.0);
   // A loop factor measuring T_from_to = (T_W_from)^-1 T_W_to; throws std::invalid_argument on a bad index
   // or an information matrix that is not symmetric positive definite.

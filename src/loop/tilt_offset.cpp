@@ -4,8 +4,8 @@ namespace vilslam::loop {
 
 namespace {
 
-// epsilon_L's prior, as a share of the samples' count (unit weight each); epsilon_W's, only to keep the
-// system regular (the directions about up are never seen).
+// epsilon_L's prior, as a share of the samples' total weight; epsilon_W's, only to keep the system regular
+// (the directions about up are never seen).
 constexpr double kMountPriorShare = 0.1;
 constexpr double kMapPriorShare = 1e-6;
 
