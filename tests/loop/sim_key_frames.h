@@ -33,6 +33,7 @@ struct SimLoopScene {
   StereoRig rig;
   sim::RouteMotion motion;
   std::shared_ptr<const Vocabulary> vocabulary;
+  sim::LidarSimConfig lidar;  // ideal returns unless a test sets a sensor's (sim::lidar_sensor)
 
   SE3 T_W_L(const SE3& T_W_I) const { return T_W_I * calib.T_I_L; }
 
@@ -48,7 +49,6 @@ struct SimLoopScene {
     frame.left = sim::render_image(world, calib.cam0, fixed(T_W_I * calib.T_I_C0), t_ns, render, depth_left_m);
     render.noise_seed = noise_seed + 1;
     frame.right = sim::render_image(world, calib.cam1, fixed(T_W_I * calib.T_I_C1), t_ns, render);
-    const sim::LidarSimConfig lidar;
     const TimeNs sweep_ns = static_cast<TimeNs>(1e9 / lidar.rate_hz);
     const LidarScan scan = sim::simulate_sweep(world, lidar, t_ns - sweep_ns, fixed(T_W_L(T_W_I)), noise_seed + 2);
     loop::KeyFrame k;
