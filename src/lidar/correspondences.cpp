@@ -61,7 +61,8 @@ std::optional<PlaneCorrespondence> associate_plane(const Vec3& p_L, const Vec3& 
   if (static_cast<int>(neighbors.size()) < config.num_neighbors) return std::nullopt;
   const std::optional<Plane> plane = fit_plane(neighbors, config.max_plane_point_distance_m, config.min_plane_spread_ratio);
   if (!plane) return std::nullopt;
-  return PlaneCorrespondence{p_L, plane->normal, plane->offset_m};
+  const double offset_m = config.plane_through_nearest ? -plane->normal.dot(neighbors.front()) : plane->offset_m;
+  return PlaneCorrespondence{p_L, plane->normal, offset_m};
 }
 
 }  // namespace vilslam::lidar

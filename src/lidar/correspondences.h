@@ -17,6 +17,11 @@ struct AssociationConfig {
   // Second / largest eigenvalue of the neighbours' scatter a plane needs: neighbours along one ring (a line
   // with range noise across it) leave the plane's tilt about that line to the noise.
   double min_plane_spread_ratio = 0.0;
+  // The plane through the nearest neighbour instead of the neighbours' centroid (normal from all of them). On a
+  // curved surface (a tunnel's arch) sparse neighbours spread along a ring bulge away from their chord, so the
+  // centroid's plane lies inside the surface and every query on it misses to the same side; two sweeps from one
+  // pose then come out tilted against each other (docs/loop.md, "Plane fits of single key scans").
+  bool plane_through_nearest = false;
 };
 
 struct Line {

@@ -47,6 +47,7 @@ struct LoopClosureConfig {
   // scatter eigenvalue, lidar::AssociationConfig::min_plane_spread_ratio), and the loss is tighter than
   // LiDAR mapping's. Measured in docs/loop.md ("ICP accuracy").
   double icp_min_plane_spread_ratio = 0.1;
+  bool icp_plane_through_nearest = true;  // lidar::AssociationConfig::plane_through_nearest
   double icp_loss_scale_m = 0.05;
   double icp_min_matched_fraction = 0.25;  // query features that found a line or plane in the map
   double icp_min_inlier_fraction = 0.5;   // matched features within the loss scale of their line or plane
@@ -133,7 +134,8 @@ struct LoopCandidateRecord {
 class LoopCloser {
  public:
   // lidar: the run's LiDAR settings; the loop ICP uses its registration and feature map settings but for
-  // icp_map_point_spacing_m, icp_source_leaf_m, icp_min_plane_spread_ratio and icp_loss_scale_m. Throws InputError for an invalid config and
+  // icp_map_point_spacing_m, icp_source_leaf_m, icp_min_plane_spread_ratio, icp_plane_through_nearest and
+  // icp_loss_scale_m. Throws InputError for an invalid config and
   // std::invalid_argument without a vocabulary.
   LoopCloser(const LoopClosureConfig& config, const lidar::LidarConfig& lidar,
              std::shared_ptr<const Vocabulary> vocabulary);

@@ -31,6 +31,7 @@ YamlFields loop_closure_yaml_fields(LoopClosureConfig& c) {
       yaml_value("icp_map_point_spacing_m", c.icp_map_point_spacing_m),
       yaml_value("icp_source_leaf_m", c.icp_source_leaf_m),
       yaml_value("icp_min_plane_spread_ratio", c.icp_min_plane_spread_ratio),
+      yaml_value("icp_plane_through_nearest", c.icp_plane_through_nearest),
       yaml_value("icp_loss_scale_m", c.icp_loss_scale_m),
       yaml_value("icp_min_matched_fraction", c.icp_min_matched_fraction),
       yaml_value("icp_min_inlier_fraction", c.icp_min_inlier_fraction),

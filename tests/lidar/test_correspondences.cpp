@@ -1,9 +1,11 @@
 // Line and plane fits of map neighbours: a plane needs neighbours spread over two axes.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "lidar/correspondences.h"
+#include "lidar/voxel_map.h"
 
 namespace vilslam::lidar {
 namespace {
@@ -36,6 +38,33 @@ TEST(FitPlane, KeepsAPatchSpreadOverTwoRings) {
   const std::optional<Plane> plane = fit_plane(patch, 0.2, 0.1);
   ASSERT_TRUE(plane.has_value());
   EXPECT_GT(std::abs(plane->normal.z()), 0.99);
+}
+
+// A tunnel's arch overhead (a cylinder of radius 2.5 m about the x axis): a query on the surface of its own ring
+// (x = 0), map neighbours three points of that ring 0.2 m apart and two of the next ring (x = 0.1 m). The arc's
+// points bulge away from their chord, so the plane through the neighbours' centroid lies inside the arch and
+// misses every query on it to the same side (4.8 mm here); the plane through the nearest neighbour, with the
+// same normal, passes within 0.5 mm.
+TEST(AssociatePlane, ThroughTheNearestNeighbourItFollowsACurvedSurface) {
+  constexpr double kRadius = 2.5;
+  const auto on_arch = [](double x_m, double angle_rad) {
+    return Vec3(x_m, kRadius * std::sin(angle_rad), kRadius * std::cos(angle_rad));
+  };
+  VoxelMapConfig map_config;
+  map_config.min_point_spacing_m = 0.01;
+  VoxelMap map(map_config);
+  map.insert({on_arch(0, -0.08), on_arch(0, 0), on_arch(0, 0.08), on_arch(0.1, -0.04), on_arch(0.1, 0.04)});
+  const Vec3 query = on_arch(0, 0.02);
+  AssociationConfig config;
+  config.min_plane_spread_ratio = 0.1;
+  const auto residual_m = [&](bool through_nearest) {
+    config.plane_through_nearest = through_nearest;
+    const std::optional<PlaneCorrespondence> c = associate_plane(query, query, map, config);
+    EXPECT_TRUE(c.has_value());
+    return c ? c->normal_W.dot(query) + c->offset_m : 0.0;
+  };
+  EXPECT_GT(std::abs(residual_m(false)), 0.004);
+  EXPECT_LT(std::abs(residual_m(true)), 0.001);
 }
 
 TEST(FitLine, NeedsAnElongatedScatter) {
