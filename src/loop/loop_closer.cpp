@@ -60,6 +60,7 @@ LoopCloser::LoopCloser(const LoopClosureConfig& config, const lidar::LidarConfig
   lidar_.registration.source_edge_leaf_m = lidar_.registration.source_surface_leaf_m = config_.icp_source_leaf_m;
   lidar_.registration.association.min_plane_spread_ratio = config_.icp_min_plane_spread_ratio;
   lidar_.registration.association.plane_through_nearest = config_.icp_plane_through_nearest;
+  lidar_.registration.association.num_neighbors = config_.icp_num_neighbors;
   lidar_.registration.loss_scale_m = config_.icp_loss_scale_m;
   if (!vocabulary_ || vocabulary_->empty()) throw std::invalid_argument("LoopCloser needs a trained vocabulary");
 }

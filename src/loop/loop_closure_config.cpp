@@ -32,6 +32,7 @@ YamlFields loop_closure_yaml_fields(LoopClosureConfig& c) {
       yaml_value("icp_source_leaf_m", c.icp_source_leaf_m),
       yaml_value("icp_min_plane_spread_ratio", c.icp_min_plane_spread_ratio),
       yaml_value("icp_plane_through_nearest", c.icp_plane_through_nearest),
+      yaml_value("icp_num_neighbors", c.icp_num_neighbors),
       yaml_value("icp_loss_scale_m", c.icp_loss_scale_m),
       yaml_value("icp_min_matched_fraction", c.icp_min_matched_fraction),
       yaml_value("icp_min_inlier_fraction", c.icp_min_inlier_fraction),
@@ -97,6 +98,7 @@ void validate_loop_closure_config(const LoopClosureConfig& c, const std::string&
   require(c.icp_min_plane_spread_ratio >= 0 && c.icp_min_plane_spread_ratio <= 1,
           "icp_min_plane_spread_ratio must be in [0, 1]");
   require(c.icp_loss_scale_m > 0, "icp_loss_scale_m must be positive");
+  require(c.icp_num_neighbors >= 3, "icp_num_neighbors must be at least 3");
   require(c.icp_min_eigenvalue_per_match >= 0, "icp_min_eigenvalue_per_match must not be negative");
   require(c.icp_max_degenerate_directions >= 0 && c.icp_max_degenerate_directions <= 6,
           "icp_max_degenerate_directions must be in [0, 6]");

@@ -42,6 +42,8 @@ TEST(LoopClosureConfig, DefaultsAreValidAndEveryFieldRoundTrips) {
   c.icp_min_eigenvalue_per_match = 0.02;
   c.icp_max_degenerate_directions = 0;
   c.icp_min_plane_spread_ratio = 0.2;
+  c.icp_plane_through_nearest = false;
+  c.icp_num_neighbors = 8;
   c.icp_loss_scale_m = 0.07;
   c.max_epnp_icp_translation_m = 0.25;
   c.max_epnp_icp_rotation_rad = 0.04;
@@ -61,6 +63,8 @@ TEST(LoopClosureConfig, DefaultsAreValidAndEveryFieldRoundTrips) {
   EXPECT_FALSE(back.loop_covariance_from_estimates);
   EXPECT_EQ(back.icp_max_degenerate_directions, 0);
   EXPECT_EQ(back.icp_loss_scale_m, 0.07);
+  EXPECT_FALSE(back.icp_plane_through_nearest);
+  EXPECT_EQ(back.icp_num_neighbors, 8);
 }
 
 TEST(LoopClosureConfig, KeysOverrideDefaults) {
@@ -88,6 +92,7 @@ TEST(LoopClosureConfig, BadValuesAndUnknownKeysAreInputErrors) {
                                  "icp_max_degenerate_directions: 7",
                                  "icp_min_plane_spread_ratio: 1.5",
                                  "icp_loss_scale_m: 0",
+                                 "icp_num_neighbors: 2",
                                  "max_epnp_icp_translation_m: 0",
                                  "max_odometry_disagreement_m: 0",
                                  "loop_sigma_m: 0",
