@@ -137,9 +137,9 @@ struct LoopCandidateRecord {
 class LoopCloser {
  public:
   // lidar: the run's LiDAR settings; the loop ICP uses its registration and feature map settings but for
-  // icp_map_point_spacing_m, icp_source_leaf_m, icp_min_plane_spread_ratio, icp_plane_through_nearest and
-  // icp_loss_scale_m. Throws InputError for an invalid config and
-  // std::invalid_argument without a vocabulary.
+  // icp_map_point_spacing_m, icp_source_leaf_m, icp_min_plane_spread_ratio, icp_plane_through_nearest,
+  // icp_num_neighbors and icp_loss_scale_m. Throws InputError for an invalid config and std::invalid_argument
+  // without a vocabulary.
   LoopCloser(const LoopClosureConfig& config, const lidar::LidarConfig& lidar,
              std::shared_ptr<const Vocabulary> vocabulary);
 
