@@ -257,6 +257,15 @@ TEST(LoopCloser, RejectsInconsistentKeyFrames) {
 // 1.2 s and 88.5 s, mid-way along the longest corridor, looking down it: LiDAR cannot tell where along the
 // axis they are. With the run's mapping settings (solution remapping) the loop keeps EPnP's value along the
 // axis and is accepted with one degenerate direction; allowing none rejects it.
+// The run's LiDAR settings as the mapper uses them: degenerate directions remapped, its threshold
+// (lidar/lidar_mapper.cpp).
+lidar::LidarConfig mapper_lidar_config() {
+  lidar::LidarConfig mapping;
+  mapping.registration.remap_degenerate_directions = true;
+  mapping.registration.degenerate_min_eigenvalue_per_match = 0.03;
+  return mapping;
+}
+
 TEST(LoopCloser, CorridorLoopTakesTheAxisFromEpnp) {
   static const test::SimLoopScene hallway(sim::Scenario::kHallway, 3);
   const SE3 A = hallway.motion.pose(hallway.motion.start_ns() + s_to_ns(1.2));
@@ -264,9 +273,7 @@ TEST(LoopCloser, CorridorLoopTakesTheAxisFromEpnp) {
   const KeyFrame kA = hallway.key_frame(A, s_to_ns(1.0), 0, 61);
   const KeyFrame kB = hallway.key_frame(B, s_to_ns(90.0), 1, 71);
   const auto poses = [&](std::size_t i) { return hallway.T_W_L(i == 0 ? A : B); };
-  lidar::LidarConfig mapping;
-  mapping.registration.remap_degenerate_directions = true;
-  mapping.registration.degenerate_min_eigenvalue_per_match = 0.03;  // the mapper's (lidar/lidar_mapper.cpp)
+  const lidar::LidarConfig mapping = mapper_lidar_config();
   const auto detect = [&](const LoopClosureConfig& config) {
     LoopCloser closer(config, mapping, hallway.vocabulary);
     closer.add_and_detect(kA, poses);
@@ -320,9 +327,7 @@ TEST(LoopCloser, ParkedReturnInTheTunnelPlanesThroughTheNearestNeighbourKeepTheP
   const KeyFrame kA = tunnel.key_frame(A, s_to_ns(1.0), 0, 81);
   const KeyFrame kB = tunnel.key_frame(A, s_to_ns(75.0), 1, 91);
   const auto poses = [&](std::size_t) { return tunnel.T_W_L(A); };
-  lidar::LidarConfig mapping;
-  mapping.registration.remap_degenerate_directions = true;
-  mapping.registration.degenerate_min_eigenvalue_per_match = 0.03;  // the mapper's (lidar/lidar_mapper.cpp)
+  const lidar::LidarConfig mapping = mapper_lidar_config();
   const auto icp_error = [&](bool through_nearest) {
     LoopClosureConfig config;
     config.icp_plane_through_nearest = through_nearest;
