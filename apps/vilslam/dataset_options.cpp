@@ -7,7 +7,8 @@ namespace vilslam::cli {
 std::shared_ptr<DatasetOptionArgs> add_dataset_options(CLI::App& app) {
   auto args = std::make_shared<DatasetOptionArgs>();
   app.add_option("--calib", args->calibration_path,
-                 "ROS bag only: rig YAML calibration (default: the bag's name with .rig.yaml instead of .bag)");
+                 "Rig YAML calibration replacing the dataset's (docs/formats.md; a ROS bag's default: its name with "
+                 ".rig.yaml instead of .bag)");
   app.add_option("--topic", args->topics,
                  "ROS bag only: ROLE=TOPIC, role cam0, cam1, imu0, lidar0 or groundtruth (default: found by type)")
       ->allow_extra_args(false);

@@ -33,13 +33,15 @@ struct DatasetSummary {
   double imu_rate_hz = 0;
   double lidar_rate_hz = 0;
   std::vector<std::string> problems;  // skipped rows, gaps larger than 1.5 periods, missing files
-  std::string calibration = "layout";  // "layout", or "kalibr" when Kalibr files beside the data replaced it
+  std::string calibration = "layout";  // "layout", "kalibr" when Kalibr files beside the data replaced it, or
+                                       // "file PATH" when DatasetOptions::calibration_path did
   std::vector<std::string> topics;    // ROS bags: "role topic type [layout]" of each stream read
 };
 
-// How to open a dataset given as a ROS1 bag file (docs/formats.md, "ROS1 bags"); folders ignore it.
+// How to open a dataset: the calibration for any layout, the topics of a ROS1 bag file (docs/formats.md,
+// "ROS1 bags"; folders ignore them).
 struct DatasetOptions {
-  std::string calibration_path;               // rig YAML; default: <bag without .bag>.rig.yaml beside it
+  std::string calibration_path;  // rig YAML replacing the dataset's; a bag's default: <bag without .bag>.rig.yaml
   std::map<std::string, std::string> topics;  // role (cam0, cam1, imu0, lidar0, groundtruth) -> topic
 };
 

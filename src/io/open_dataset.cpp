@@ -1,8 +1,10 @@
 // Layout detection: a ROS1 bag (a .bag file), the project's format (rig.yaml or mav0/lidar0), EuRoC ASL
-// (mav0/), KITTI odometry; then, for folders, Kalibr calibration files in the folder when there are any.
+// (mav0/), KITTI odometry; then, for folders, Kalibr calibration files in the folder when there are any, and
+// last a rig YAML the caller names (`--calib`), which replaces them all.
 #include <filesystem>
 
 #include "common/error.h"
+#include "io/calibration_io.h"
 #include "io/dataset_index.h"
 #include "io/kalibr_calibration.h"
 
@@ -28,6 +30,10 @@ DatasetIndex index_dataset(const std::string& root, const DatasetOptions& option
   }
   // A user's Kalibr calibration next to the data replaces the layout's (docs/formats.md).
   if (!bag && apply_kalibr_folder(root, index.calibration)) index.summary.calibration = "kalibr";
+  if (!bag && !options.calibration_path.empty()) {
+    index.calibration = read_rig_yaml(options.calibration_path);
+    index.summary.calibration = "file " + options.calibration_path;
+  }
   finalize_summary(index);
   return index;
 }
