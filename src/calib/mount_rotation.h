@@ -1,11 +1,13 @@
 #pragma once
 // The rotation of the LiDAR's mount from how the rig turned (hand-eye calibration, rotation part).
-// Over a window [a, b] the IMU turns by A = R_W_I(a)^T R_W_I(b) (from the VIO, gyroscope-accurate) and the
-// LiDAR by B = R_W_L(a)^T R_W_L(b) (from the LiDAR's own odometry, which never sees the calibration); one rigid
-// mount R_I_L gives B = R_I_L^T A R_I_L. Turns about an axis tell the mount's rotation about the two axes
-// across it: a ground robot turning about the vertical shows the mount's tilt, not its yaw, which stays at the
-// nominal value. The noise of one window is taken from the fit's own residuals (a-posteriori variance).
-// Used by `vilslam calibrate-lidar` (docs/calibration.md).
+// Over a window [a, b] the IMU turns by A (its gyroscope integrated, less a bias estimated with the mount) and
+// the LiDAR by B = R_W_L(a)^T R_W_L(b) (its odometry); one rigid mount R_I_L gives B = R_I_L^T A R_I_L. Turns
+// about an axis tell the mount's rotation about the two axes across it: a ground robot turning about the
+// vertical shows the mount's tilt, not its yaw, which stays at the nominal value. The noise of one window is
+// taken from the fit's own residuals (a-posteriori variance). Used by `vilslam calibrate-lidar`
+// (docs/calibration.md).
+#include <vector>
+
 #include "common/lie.h"
 #include "common/types.h"
 
@@ -14,7 +16,7 @@ namespace vilslam::calib {
 struct MountRotationConfig {
   double window_s = 2.0;            // each relative rotation spans this long
   double stride_s = 1.0;            // windows start this far apart
-  double min_rotation_rad = 0.35;   // windows turning less (20 deg) are left out: they tell little
+  double min_rotation_rad = 0.35;   // windows turning this much (20 deg) are counted as turns
   double huber_scales = 2.0;        // residuals beyond this many robust scales (1.4826 x median) count linearly
   double max_sigma_rad = 0.0035;    // a direction known worse than this (0.2 deg) keeps the nominal value
   int iterations = 10;              // Gauss-Newton with Huber weights
@@ -26,12 +28,16 @@ struct MountRotationEstimate {
   Mat3 covariance_rad2 = Mat3::Zero();  // of the correction, over the estimated directions (zero elsewhere)
   int estimated_directions = 0;         // 0-3: the directions the turns showed well enough
   Vec3 kept_direction = Vec3::Zero();   // with 2: the unit axis left at the nominal (yaw for turns about it)
-  int windows = 0;                      // windows that turned enough
-  double rms_residual_rad = 0.0;        // after the fit, over those windows
+  Vec3 gyro_bias_rad_s = Vec3::Zero();  // estimated with the mount, in I
+  int windows = 0;                      // windows used (each with IMU samples and LiDAR poses around it)
+  int turning_windows = 0;              // of those, the ones that turned min_rotation_rad or more
+  double rms_residual_rad = 0.0;        // after the fit, over the turning windows
 };
 
-// Needs time-sorted trajectories; windows are taken where both cover [a, b] (poses interpolated).
-MountRotationEstimate estimate_mount_rotation(const Trajectory& T_W_I, const Trajectory& T_W_L,
+// Needs time-sorted IMU samples and LiDAR poses on one clock; windows are taken where both cover [a, b]
+// without gaps (poses interpolated, the gyroscope integrated at its midpoint rates). With no turning window
+// the nominal mount comes back unchanged.
+MountRotationEstimate estimate_mount_rotation(const std::vector<ImuSample>& imu, const Trajectory& T_W_L,
                                               const Mat3& R_I_L_nominal, const MountRotationConfig& config = {});
 
 }  // namespace vilslam::calib

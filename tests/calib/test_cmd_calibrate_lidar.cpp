@@ -17,34 +17,36 @@ namespace {
 using calib::test::kDeg;
 
 struct Files {
-  std::filesystem::path dir, data, imu, lidar, out;
+  std::filesystem::path dir, data, lidar, out;
 };
 
-// The synthetic dataset (its nominal LiDAR mount) and the poses of a rig turning with the mount off by
-// `correction` (in L).
-Files write_inputs(const Trajectory& imu, const Vec3& correction) {
+// The synthetic dataset (its nominal LiDAR mount) with `rig`'s gyroscope as its IMU stream, and the LiDAR's
+// poses on that route with the mount off by `correction` (in L).
+Files write_inputs(const calib::test::TurningRig& rig, const Vec3& correction) {
   Files f;
   f.dir = vilslam::test::temp_dir();
   f.data = f.dir / "data";
-  f.imu = f.dir / "imu.tum";
   f.lidar = f.dir / "lidar.tum";
   f.out = f.dir / "refined.rig.yaml";
-  const vilslam::test::SyntheticData data = vilslam::test::make_synthetic_data();
+  vilslam::test::SyntheticData data = vilslam::test::make_synthetic_data();
+  const TimeNs t0 = data.imu.front().t_ns;
+  data.imu = rig.imu;
+  for (ImuSample& s : data.imu) s.t_ns += t0;
+  Trajectory T_W_I = rig.T_W_I;
+  for (TimedPose& p : T_W_I) p.t_ns += t0;
   vilslam::test::write_synthetic_dataset(f.data.string(), data);
   const Mat3 R_true = data.calib.T_I_L.rotation() * so3::exp(correction);
-  write_trajectory(f.imu.string(), imu, TrajectoryFormat::kTum);
-  write_trajectory(f.lidar.string(), calib::test::lidar_route(imu, R_true, 0.03 * kDeg, 11), TrajectoryFormat::kTum);
+  write_trajectory(f.lidar.string(), calib::test::lidar_route(T_W_I, R_true, 0.03 * kDeg, 11), TrajectoryFormat::kTum);
   return f;
 }
 
 std::string args(const Files& f) {
-  return "calibrate-lidar " + f.data.string() + " --imu-poses " + f.imu.string() + " --lidar-poses " +
-         f.lidar.string() + " --out " + f.out.string();
+  return "calibrate-lidar " + f.data.string() + " --lidar-poses " + f.lidar.string() + " --out " + f.out.string();
 }
 
 TEST(CmdCalibrateLidar, WritesTheDatasetsCalibrationWithTheMountsTiltCorrected) {
   const Vec3 correction = Vec3(0.5, -0.2, 0.3) * kDeg;
-  const Files f = write_inputs(calib::test::imu_route(0.0), correction);
+  const Files f = write_inputs(calib::test::turning_rig(0.0, Vec3(0.003, -0.002, 0.001)), correction);
   const vilslam::test::CliResult r = vilslam::test::run_cli(args(f));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("directions estimated: 2 of 3"), std::string::npos) << r.output;
@@ -67,9 +69,12 @@ TEST(CmdCalibrateLidar, WritesTheDatasetsCalibrationWithTheMountsTiltCorrected) 
 }
 
 TEST(CmdCalibrateLidar, ARouteWithoutTurnsIsAnErrorAndWritesNothing) {
-  Trajectory straight;
-  for (int k = 0; k <= 300; ++k) {
-    straight.push_back({static_cast<TimeNs>(k) * 100'000'000, SE3(Mat3::Identity(), Vec3(0.1 * k, 0.0, 0.0))});
+  calib::test::TurningRig straight;
+  for (int k = 0; k <= 6000; ++k) {
+    ImuSample s;
+    s.t_ns = static_cast<TimeNs>(k) * 5'000'000;
+    straight.imu.push_back(s);
+    if (k % 20 == 0) straight.T_W_I.push_back({s.t_ns, SE3(Mat3::Identity(), Vec3(0.005 * k, 0.0, 0.0))});
   }
   const Files f = write_inputs(straight, Vec3(0.5, 0.0, 0.0) * kDeg);
   const vilslam::test::CliResult r = vilslam::test::run_cli(args(f));
@@ -80,17 +85,18 @@ TEST(CmdCalibrateLidar, ARouteWithoutTurnsIsAnErrorAndWritesNothing) {
 }
 
 TEST(CmdCalibrateLidar, MissingOrUnorderedPosesAreErrorsNamingTheFile) {
-  const Files f = write_inputs(calib::test::imu_route(0.0), Vec3::Zero());
-  std::filesystem::remove(f.imu);
+  const Files f = write_inputs(calib::test::turning_rig(0.0), Vec3::Zero());
+  const Trajectory lidar = read_trajectory(f.lidar.string(), TrajectoryFormat::kTum);
+  std::filesystem::remove(f.lidar);
   vilslam::test::CliResult r = vilslam::test::run_cli(args(f));
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find(f.imu.string()), std::string::npos) << r.output;
-  Trajectory backwards = calib::test::imu_route(0.0);
+  EXPECT_NE(r.output.find(f.lidar.string()), std::string::npos) << r.output;
+  Trajectory backwards = lidar;
   std::swap(backwards[10], backwards[11]);
-  write_trajectory(f.imu.string(), backwards, TrajectoryFormat::kTum);
+  write_trajectory(f.lidar.string(), backwards, TrajectoryFormat::kTum);
   r = vilslam::test::run_cli(args(f));
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find(f.imu.string()), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(f.lidar.string()), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(f.out));
 }
 
