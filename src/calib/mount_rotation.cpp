@@ -139,8 +139,10 @@ MountRotationEstimate estimate_mount_rotation(const std::vector<ImuSample>& imu,
     const Eigen::LDLT<Mat3> H_bb_ldlt(H_bb);
     const Mat3 S = H.topLeftCorner<3, 3>() - H.topRightCorner<3, 3>() * H_bb_ldlt.solve(H.bottomLeftCorner<3, 3>());
     const Vec3 g_s = g.head<3>() - H.topRightCorner<3, 3>() * H_bb_ldlt.solve(g.tail<3>());
+    // Windows overlapping window_s / stride_s times share their noise: count them as that many times fewer.
     const double dof = std::max(3.0 * static_cast<double>(windows.size()) - 6.0, 1.0);
-    const double variance = std::max(weighted_sq / dof, 1e-18);
+    const double overlap = std::max(1.0, config.window_s / config.stride_s);
+    const double variance = std::max(overlap * weighted_sq / dof, 1e-18);
     const Eigen::SelfAdjointEigenSolver<Mat3> eig(S);
     Vec3 eps = Vec3::Zero();
     out.covariance_rad2.setZero();
