@@ -48,7 +48,7 @@ vilslam::cli::Command reg("calibrate-lidar", "The LiDAR mount's rotation from th
   app.add_option("--window", o->config.window_s, "Seconds each relative rotation spans")
       ->check(CLI::Range(0.2, 60.0))
       ->capture_default_str();
-  app.add_option("--min-rotation-deg", o->min_rotation_deg, "Windows turning less are left out")
+  app.add_option("--min-rotation-deg", o->min_rotation_deg, "A window turning this much counts as a turn (--min-windows)")
       ->check(CLI::Range(1.0, 180.0))
       ->capture_default_str();
   app.add_option("--min-windows", o->min_windows, "Fewer windows that turn enough are an error")
