@@ -6,6 +6,8 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
+#include "vio/preintegration.h"
+
 namespace vilslam::calib {
 namespace {
 
@@ -26,30 +28,17 @@ bool covers(const Trajectory& poses, TimeNs t_ns, TimeNs max_gap_ns) {
 }
 
 struct Window {
-  std::size_t first_sample = 0, end_sample = 0;  // IMU samples [first, end) span [a, b]
   TimeNs a_ns = 0, b_ns = 0;
-  Mat3 B;  // the LiDAR's turn, in L
+  Mat3 B;          // the LiDAR's turn, in L
+  bool turning = false;
 };
 
-// The gyroscope's rotation over [a, b] less `bias`, and its first-order change with the bias:
-// A(bias + d) ~= A Exp(J d), accumulated as J <- dR^T J - Jr(w dt) dt (Forster et al. 2017, eq. (44)).
-struct GyroTurn {
-  Mat3 A = Mat3::Identity();
-  Mat3 J_bias = Mat3::Zero();
-};
-
-GyroTurn integrate_gyro(const std::vector<ImuSample>& imu, const Window& w, const Vec3& bias) {
-  GyroTurn turn;
-  for (std::size_t k = w.first_sample; k + 1 < w.end_sample; ++k) {
-    const TimeNs from = std::max(imu[k].t_ns, w.a_ns);
-    const TimeNs to = std::min(imu[k + 1].t_ns, w.b_ns);
-    if (to <= from) continue;
-    const double dt = static_cast<double>(to - from) / kNsPerS;
-    const Vec3 phi = (0.5 * (imu[k].gyro_rad_s + imu[k + 1].gyro_rad_s) - bias) * dt;
-    const Mat3 dR = so3::exp(phi);
-    turn.J_bias = dR.transpose() * turn.J_bias - so3::right_jacobian(phi) * dt;
-    turn.A = turn.A * dR;
-  }
+// The gyroscope's rotation over the window less `bias` (vio/preintegration.h; the accelerometer's part is not
+// used). Its delta_R is A, and A(bias + d) ~= A Exp(dR_dbg d).
+Preintegration gyro_turn(const std::vector<ImuSample>& imu, const Window& w, const Vec3& bias, double* gap_s = nullptr) {
+  Preintegration turn(bias, Vec3::Zero(), ImuNoise{});
+  const double in_gaps_s = integrate_samples(imu, w.a_ns, w.b_ns, turn, ImuGapModel{ns_to_s(w.b_ns - w.a_ns) / 4});
+  if (gap_s) *gap_s = in_gaps_s;
   return turn;
 }
 
@@ -62,28 +51,16 @@ std::vector<Window> windows_of(const std::vector<ImuSample>& imu, const Trajecto
   const TimeNs max_gap_ns = window_ns / 4;
   const TimeNs first = std::max(imu.front().t_ns, T_W_L.front().t_ns);
   const TimeNs last = std::min(imu.back().t_ns, T_W_L.back().t_ns);
-  const auto before = [](const ImuSample& s, TimeNs t) { return s.t_ns < t; };
   for (TimeNs a = first; a + window_ns <= last; a += stride_ns) {
-    const TimeNs b = a + window_ns;
-    if (!covers(T_W_L, a, max_gap_ns) || !covers(T_W_L, b, max_gap_ns)) continue;
     Window w;
     w.a_ns = a;
-    w.b_ns = b;
-    // The last sample at or before a, through the first at or after b.
-    auto lo = std::lower_bound(imu.begin(), imu.end(), a, before);
-    if (lo == imu.end()) continue;
-    if (lo->t_ns > a) {
-      if (lo == imu.begin()) continue;
-      --lo;
-    }
-    const auto hi = std::lower_bound(lo, imu.end(), b, before);
-    if (hi == imu.end()) continue;
-    bool gap = false;
-    for (auto it = lo; it != hi && !gap; ++it) gap = (it + 1)->t_ns - it->t_ns > max_gap_ns;
-    if (gap) continue;
-    w.first_sample = static_cast<std::size_t>(lo - imu.begin());
-    w.end_sample = static_cast<std::size_t>(hi - imu.begin()) + 1;
-    w.B = pose_at(T_W_L, a).rotation().transpose() * pose_at(T_W_L, b).rotation();
+    w.b_ns = a + window_ns;
+    if (!covers(T_W_L, w.a_ns, max_gap_ns) || !covers(T_W_L, w.b_ns, max_gap_ns)) continue;
+    double gap_s = 0.0;
+    const Preintegration turn = gyro_turn(imu, w, Vec3::Zero(), &gap_s);
+    if (gap_s > 0.0) continue;
+    w.turning = so3::log(turn.delta_R()).norm() >= config.min_rotation_rad;
+    w.B = pose_at(T_W_L, w.a_ns).rotation().transpose() * pose_at(T_W_L, w.b_ns).rotation();
     windows.push_back(w);
   }
   return windows;
@@ -97,11 +74,7 @@ MountRotationEstimate estimate_mount_rotation(const std::vector<ImuSample>& imu,
   MountRotationEstimate out;
   out.R_I_L = R_I_L_nominal;
   out.windows = static_cast<int>(windows.size());
-  std::vector<bool> turning(windows.size());
-  for (std::size_t i = 0; i < windows.size(); ++i) {
-    turning[i] = so3::log(integrate_gyro(imu, windows[i], Vec3::Zero()).A).norm() >= config.min_rotation_rad;
-    out.turning_windows += turning[i] ? 1 : 0;
-  }
+  for (const Window& w : windows) out.turning_windows += w.turning ? 1 : 0;
   if (out.turning_windows == 0) return out;
   Mat3 R = R_I_L_nominal;
   Vec3 bias = Vec3::Zero();
@@ -112,11 +85,11 @@ MountRotationEstimate estimate_mount_rotation(const std::vector<ImuSample>& imu,
     // Perturbing R by Exp(eps) and the bias by d: Exp(-eps) A' Exp(eps) ~= A' Exp((I - A'^T) eps + R^T J d),
     // A' = R^T A R the IMU's turn seen in L, so r = Log(B^T Exp(-eps) A' Exp(eps)) ~= r0 + Jr^-1(r0) [..] [eps; d].
     for (std::size_t i = 0; i < windows.size(); ++i) {
-      const GyroTurn turn = integrate_gyro(imu, windows[i], bias);
-      const Mat3 A_L = R.transpose() * turn.A * R;
+      const Preintegration turn = gyro_turn(imu, windows[i], bias);
+      const Mat3 A_L = R.transpose() * turn.delta_R() * R;
       residuals[i] = so3::log(windows[i].B.transpose() * A_L);
       const Mat3 Jr_inv = so3::right_jacobian_inv(residuals[i]);
-      jacobians[i] << Jr_inv * (Mat3::Identity() - A_L.transpose()), Jr_inv * R.transpose() * turn.J_bias;
+      jacobians[i] << Jr_inv * (Mat3::Identity() - A_L.transpose()), Jr_inv * R.transpose() * turn.dR_dbg();
       norms[i] = residuals[i].norm();
     }
     std::vector<double> sorted = norms;
@@ -130,7 +103,7 @@ MountRotationEstimate estimate_mount_rotation(const std::vector<ImuSample>& imu,
       H += w * jacobians[i].transpose() * jacobians[i];
       g += w * jacobians[i].transpose() * residuals[i];
       weighted_sq += w * norms[i] * norms[i];
-      if (turning[i]) turning_sq += norms[i] * norms[i];
+      if (windows[i].turning) turning_sq += norms[i] * norms[i];
     }
     out.rms_residual_rad = std::sqrt(turning_sq / out.turning_windows);
     // The bias is seen by every window: eliminate it (Schur complement), then update only the mount's

@@ -35,7 +35,7 @@ struct MountRotationEstimate {
 };
 
 // Needs time-sorted IMU samples and LiDAR poses on one clock; windows are taken where both cover [a, b]
-// without gaps (poses interpolated, the gyroscope integrated at its midpoint rates). With no turning window
+// without gaps (poses interpolated, the gyroscope preintegrated as the VIO does). With no turning window
 // the nominal mount comes back unchanged.
 MountRotationEstimate estimate_mount_rotation(const std::vector<ImuSample>& imu, const Trajectory& T_W_L,
                                               const Mat3& R_I_L_nominal, const MountRotationConfig& config = {});
