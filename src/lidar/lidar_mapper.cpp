@@ -125,12 +125,15 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
     out.degenerate = r.degeneracy.degenerate();
     out.degenerate_directions = r.degeneracy.degenerate_directions;
     out.information_eigenvalues = r.degeneracy.eigenvalues;
+    const Mat6& V = r.degeneracy.eigenvectors;
+    out.information = V * r.degeneracy.eigenvalues.asDiagonal() * V.transpose();
+    out.T_prev_predicted = T_trans;
     out.rms_residual_m = r.rms_residual_m;
     out.matched_fraction = r.matched_fraction;
     out.inlier_fraction = r.inlier_fraction;
     out.gap_s = std::max(0.0, ns_to_s(scan.t_ns - previous_->end_t_ns));
     out.converged = r.converged;
-    const SE3 correction = (previous_->T_W_L * T_trans).inverse() * out.T_W_L;
+    const SE3 correction = (previous_->T_W_L * T_trans).inverse() * out.T_W_L;  // the jump from the prediction
     out.correction_m = correction.translation().norm();
     out.correction_deg = so3::log(correction.rotation()).norm() * 180.0 / M_PI;
   }

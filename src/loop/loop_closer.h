@@ -90,6 +90,10 @@ struct LoopClosureConfig {
   // Degenerate ICP directions a resumed loop may have (the guess's value kept along them: a corridor's axis and
   // a tunnel's roll).
   int resume_max_degenerate_directions = 2;
+  // The first sweep the mapper registers on the map after re-localizing (a reset or --load-map) joins the graph by
+  // its predicted motion plus a loop from the nearest map key scan with the registration's information, instead of
+  // by its registered motion (pipeline/loop_closure_module.h; docs/loop.md, "Forced resets").
+  bool join_registration = true;
 };
 
 // The `loop_closure:` section of a run config, bound to c's fields; validate after reading.

@@ -55,6 +55,7 @@ YamlFields loop_closure_yaml_fields(LoopClosureConfig& c) {
       yaml_value("resume_window_s", c.resume_window_s), yaml_value("resume_sigma_m", c.resume_sigma_m),
       yaml_value("resume_sigma_rad", c.resume_sigma_rad),
       yaml_value("resume_max_degenerate_directions", c.resume_max_degenerate_directions),
+      yaml_value("join_registration", c.join_registration),
   };
 }
 

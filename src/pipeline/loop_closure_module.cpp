@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "loop/loop_constraint.h"
+#include "loop/registration_loop.h"
 
 namespace vilslam {
 namespace {
@@ -136,6 +137,7 @@ bool LoopClosureModule::add_map_loop(const loop::LoopCandidateRecord& r) {
     graph_.add_map_loop(T_map_Lu(loop), loop.query_pose_index, loop.T_Lu_Lv, loop.information);
   }
   out_.relocalized_t_ns = r.query_t_ns;
+  if (config_.join_registration) join_registration_ = JoinRegistration::kAwaitCorrection;
   out_.T_map_run = T_map_run;
   relocalization_.reset();
   closer_->set_in_map_frame(true);
@@ -185,11 +187,34 @@ MapCorrection LoopClosureModule::correction_at(std::size_t pose_index) const {
 void LoopClosureModule::scan_mapped(const lidar::LidarMappingResult& mapped, const lidar::FeatureScan& features_L) {
   // lidar.tum: the mapper's motion composed, continuous across the corrections.
   out_.lidar_odometry.push_back({mapped.t_ns, corrected_ ? T_odometry_mapper_ * mapped.T_W_L : mapped.T_W_L});
-  const std::size_t index = last_mapper_T_W_L_
-                                ? graph_.add_odometry(mapped.t_ns, last_mapper_T_W_L_->inverse() * mapped.T_W_L,
-                                                      mapped.degenerate_directions)
-                                : graph_.add_first_pose(mapped.t_ns, mapped.T_W_L);
+  // The first sweep on the map after re-localizing: its odometry factor is the mapper's prediction, and its
+  // registration on the map a loop (loop/registration_loop.h), so the jump from the one to the other moves the
+  // segment before it instead of staying in the trajectory as motion.
+  std::optional<loop::RegistrationLoop> join_loop;
+  if (join_registration_ == JoinRegistration::kAwaitSweep) {
+    join_registration_ = JoinRegistration::kNone;
+    // Along the directions the registration left free, the resume guess's sigmas (what placed the segment there).
+    const loop::RegistrationLoopSigmas sigmas{config_.icp_sigma_m, config_.loop_sigma_m, config_.loop_sigma_rad,
+                                              config_.resume_sigma_m, config_.resume_sigma_rad};
+    join_loop = loop::registration_loop(closer_->map_key_frames(), closer_->map_poses(), mapped.T_W_L,
+                                        mapped.information, mapped.degenerate_directions, map_radius_m_, sigmas);
+  }
+  std::size_t index = 0;
+  if (join_loop) {
+    index = graph_.add_odometry(mapped.t_ns, mapped.T_prev_predicted);
+  } else if (last_mapper_T_W_L_) {
+    index = graph_.add_odometry(mapped.t_ns, last_mapper_T_W_L_->inverse() * mapped.T_W_L, mapped.degenerate_directions);
+  } else {
+    index = graph_.add_first_pose(mapped.t_ns, mapped.T_W_L);
+  }
   if (mapped.up_L_prior) graph_.set_up_direction(index, *mapped.up_L_prior, mapped.up_L_prior_sigma_rad);
+  if (join_loop) {
+    const auto start = std::chrono::steady_clock::now();
+    graph_.add_map_loop(closer_->map_poses()[join_loop->map_pose_index].T_W_B, index, join_loop->T_Lu_Lv,
+                        join_loop->information);
+    graph_.optimize();
+    out_.correction_ms.push_back(elapsed_ms(start));
+  }
   last_mapper_T_W_L_ = mapped.T_W_L;
   out_.lidar_global.push_back({mapped.t_ns, mapped.T_W_L});  // as published now
   if (!closer_ || pending_) return;
@@ -208,6 +233,7 @@ void LoopClosureModule::scan_mapped(const lidar::LidarMappingResult& mapped, con
 std::optional<MapCorrection> LoopClosureModule::take_correction() {
   std::optional<MapCorrection> c;
   std::swap(c, correction_);
+  if (c && join_registration_ == JoinRegistration::kAwaitCorrection) join_registration_ = JoinRegistration::kAwaitSweep;
   return c;
 }
 

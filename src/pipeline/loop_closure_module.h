@@ -115,6 +115,10 @@ class LoopClosureModule {
   SE3 T_odometry_mapper_;                  // lidar_odometry = T_odometry_mapper_ * mapper output
   bool corrected_ = false;
   std::optional<std::size_t> last_key_index_;  // graph index of the last key scan
+  // The join checked by the mapper (LoopClosureConfig::join_registration): armed when the run re-localizes; the
+  // correction is then handed to the mapper, and the next sweep is the first registered on the map.
+  enum class JoinRegistration { kNone, kAwaitCorrection, kAwaitSweep };
+  JoinRegistration join_registration_ = JoinRegistration::kNone;
   struct Relocalization {                      // map loops in a row that agree on T_map_run
     SE3 T_map_run;
     std::vector<loop::LoopCandidateRecord> loops;
