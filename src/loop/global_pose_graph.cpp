@@ -91,6 +91,16 @@ void GlobalPoseGraph::add_map_loop(const SE3& T_W_from, std::size_t to_index, co
   first_new_loop_pose_ = 0;
 }
 
+void GlobalPoseGraph::remove_map_loops(std::vector<std::size_t> positions) {
+  std::sort(positions.begin(), positions.end());
+  positions.erase(std::unique(positions.begin(), positions.end()), positions.end());
+  if ((!positions.empty() && positions.back() >= map_loops_.size()) || positions.size() >= map_loops_.size()) {
+    throw std::invalid_argument("global pose graph: map loops to remove must exist and leave at least one");
+  }
+  for (auto it = positions.rbegin(); it != positions.rend(); ++it) map_loops_.erase(map_loops_.begin() + *it);
+  first_new_loop_pose_ = 0;
+}
+
 // The last pose s <= the lowest end of the new loops that no loop spans (lower end < s < upper end). Every path
 // from a pose after s to a pose before it passes through s, and the factors are invariant to moving all poses
 // by one rigid transform, so holding s and everything before it fixed loses nothing.

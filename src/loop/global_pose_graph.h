@@ -85,6 +85,10 @@ class GlobalPoseGraph {
   void transform(const SE3& T_new_old);
   void add_map_loop(const SE3& T_W_from, std::size_t to_index, const SE3& T_from_to, const Mat6& information);
   std::size_t map_loops() const { return map_loops_.size(); }
+  // Drops the map loops at these positions (in the order they were added; later ones move up); the next optimize()
+  // re-estimates every pose. Throws std::invalid_argument on a position out of range or when no map loop would stay
+  // (they hold the gauge).
+  void remove_map_loops(std::vector<std::size_t> positions);
 
   // Corrects every pose with the factors known now (nothing to do without a new loop). Deterministic.
   CorrectionSummary optimize();

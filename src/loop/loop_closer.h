@@ -92,7 +92,8 @@ struct LoopClosureConfig {
   int resume_max_degenerate_directions = 2;
   // The first sweep the mapper registers on the map after re-localizing (a reset or --load-map) joins the graph by
   // its predicted motion plus a loop from the nearest map key scan with the registration's information, instead of
-  // by its registered motion (pipeline/loop_closure_module.h; docs/loop.md, "Forced resets").
+  // by its registered motion, and that loop replaces the map loops verified from the resume guess
+  // (pipeline/loop_closure_module.h; docs/loop.md, "Forced resets").
   bool join_registration = true;
 };
 

@@ -134,6 +134,7 @@ bool LoopClosureModule::add_map_loop(const loop::LoopCandidateRecord& r) {
   // Re-localized: the graph moves into the map's frame by the latest vote and takes the agreeing loops.
   graph_.transform(T_map_run);
   for (const loop::LoopCandidateRecord& loop : relocalization_->loops) {
+    if (loop.resumed) resumed_map_loops_.push_back(graph_.map_loops());
     graph_.add_map_loop(T_map_Lu(loop), loop.query_pose_index, loop.T_Lu_Lv, loop.information);
   }
   out_.relocalized_t_ns = r.query_t_ns;
@@ -188,8 +189,8 @@ void LoopClosureModule::scan_mapped(const lidar::LidarMappingResult& mapped, con
   // lidar.tum: the mapper's motion composed, continuous across the corrections.
   out_.lidar_odometry.push_back({mapped.t_ns, corrected_ ? T_odometry_mapper_ * mapped.T_W_L : mapped.T_W_L});
   // The first sweep on the map after re-localizing: its odometry factor is the mapper's prediction, and its
-  // registration on the map a loop (loop/registration_loop.h), so the jump from the one to the other moves the
-  // segment before it instead of staying in the trajectory as motion.
+  // registration on the map a loop (loop/registration_loop.h) that replaces the loops from the resume guess, so the
+  // jump from the one to the other moves the segment before it instead of staying in the trajectory as motion.
   std::optional<loop::RegistrationLoop> join_loop;
   if (join_registration_ == JoinRegistration::kAwaitSweep) {
     join_registration_ = JoinRegistration::kNone;
@@ -212,6 +213,10 @@ void LoopClosureModule::scan_mapped(const lidar::LidarMappingResult& mapped, con
     const auto start = std::chrono::steady_clock::now();
     graph_.add_map_loop(closer_->map_poses()[join_loop->map_pose_index].T_W_B, index, join_loop->T_Lu_Lv,
                         join_loop->information);
+    // The loops verified from the resume guess stood in until the mapper measured the join on the whole map: ICP
+    // of single key scans, from a guess, against the registration of this sweep on all the key scans around it.
+    graph_.remove_map_loops(resumed_map_loops_);
+    resumed_map_loops_.clear();
     graph_.optimize();
     out_.correction_ms.push_back(elapsed_ms(start));
   }

@@ -119,6 +119,7 @@ class LoopClosureModule {
   // correction is then handed to the mapper, and the next sweep is the first registered on the map.
   enum class JoinRegistration { kNone, kAwaitCorrection, kAwaitSweep };
   JoinRegistration join_registration_ = JoinRegistration::kNone;
+  std::vector<std::size_t> resumed_map_loops_;  // positions in the graph of the map loops from the resume guess
   struct Relocalization {                      // map loops in a row that agree on T_map_run
     SE3 T_map_run;
     std::vector<loop::LoopCandidateRecord> loops;

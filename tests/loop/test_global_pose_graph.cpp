@@ -432,6 +432,31 @@ TEST(GlobalPoseGraph, MapLoopsBringTheRunIntoTheMapsFrame) {
   for (std::size_t k : held) EXPECT_LT((graph.pose(k).translation() - s.truth[k].T_W_B.translation()).norm(), 0.02) << k;
 }
 
+// A map loop that only stood in (after a reset, one verified from a guess): 0.3 m off, it pulls the run; removed
+// once a better one is there, the next correction forgets it. Removing every map loop is refused (they hold the
+// gauge), as is a position that does not exist.
+TEST(GlobalPoseGraph, RemovedMapLoopsNoLongerPull) {
+  const test::SquareLoop s = make_square_loop();
+  loop::GlobalPoseGraph graph = global_graph_of(s, square_config());
+  const Mat6 information = loop::information_from_sigmas(test::kLoopSigmaM, test::kLoopSigmaRad);
+  const std::size_t k = 13;
+  const SE3 T_map_Lu = s.truth[k].T_W_B;
+  const SE3 off(Mat3::Identity(), Vec3(0.3, 0, 0));
+  graph.add_map_loop(T_map_Lu, k, off, information);                   // the stand-in, 0.3 m off
+  graph.add_map_loop(T_map_Lu, k + 1, T_map_Lu.inverse() * s.truth[k + 1].T_W_B, information);  // right
+  graph.optimize();
+  const double pulled_m = (graph.pose(k).translation() - s.truth[k].T_W_B.translation()).norm();
+  graph.remove_map_loops({0});
+  EXPECT_EQ(graph.map_loops(), 1u);
+  graph.optimize();
+  const double held_m = (graph.pose(k).translation() - s.truth[k].T_W_B.translation()).norm();
+  std::printf("pose %zu: %.3f m off with the stand-in, %.3f m without\n", k, pulled_m, held_m);
+  EXPECT_GT(pulled_m, 0.1);
+  EXPECT_LT(held_m, 0.02);
+  EXPECT_THROW(graph.remove_map_loops({0}), std::invalid_argument);
+  EXPECT_THROW(graph.remove_map_loops({3}), std::invalid_argument);
+}
+
 TEST(OdometryChain, CovarianceMatchesNumericJacobians) {
   const test::BlockRoute r = test::make_block_route(40);
   const std::size_t a = 5;
