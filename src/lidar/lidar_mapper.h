@@ -36,7 +36,8 @@ struct LidarMappingResult {
   std::optional<Vec3> up_L_prior;      // the prior's up direction R_W_L^T e_z at t_ns (VIO: against gravity), if any
   double up_L_prior_sigma_rad = 0.0;   // the prior's tilt standard deviation, when known (process())
   Vec6 information_eigenvalues = Vec6::Zero();  // of J^T J at the solution, ascending
-  Mat6 information = Mat6::Zero();     // J^T J at the solution, [rho; phi] in L (per m^2 of point residual)
+  Mat6 information = Mat6::Zero();     // J^T J at the solution, [rho; phi] in L (per m^2 of point residual; the
+                                       // tilt prior's share included, as in the degeneracy analysis)
   SE3 T_prev_predicted;                // the motion prediction T_trans from the previous sweep's pose (identity first)
   double rms_residual_m = 0.0;         // registration fit (RegistrationResult); 0 for the first sweep
   double matched_fraction = 0.0;
