@@ -11,6 +11,7 @@
 #include "lidar/registration.h"
 #include "loop/constraint_fusion.h"
 #include "loop/loop_constraint.h"
+#include "loop/pose_graph.h"
 
 namespace vilslam::loop {
 namespace {
@@ -176,10 +177,7 @@ std::optional<LoopCloser::InitialEstimate> LoopCloser::visual_estimate(const Key
 }
 
 Mat6 LoopCloser::resume_information() const {
-  Mat6 information = Mat6::Zero();
-  information.diagonal() << Vec3::Constant(1.0 / (config_.resume_sigma_m * config_.resume_sigma_m)),
-      Vec3::Constant(1.0 / (config_.resume_sigma_rad * config_.resume_sigma_rad));
-  return information;
+  return information_from_sigmas(config_.resume_sigma_m, config_.resume_sigma_rad);
 }
 
 LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, double bow_score,
@@ -275,9 +273,7 @@ LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, dou
   // Loop factor noise: the config sigmas (docs/loop.md: why not ICP's J^T J alone) plus, where neither estimate
   // measures a direction well (outdoors, the axis along which ICP kept a distant-point EPnP), the combined
   // estimate's own covariance.
-  Mat6 floor_information = Mat6::Zero();
-  floor_information.diagonal() << Vec3::Constant(1.0 / (config_.loop_sigma_m * config_.loop_sigma_m)),
-      Vec3::Constant(1.0 / (config_.loop_sigma_rad * config_.loop_sigma_rad));
+  const Mat6 floor_information = information_from_sigmas(config_.loop_sigma_m, config_.loop_sigma_rad);
   r.information = config_.loop_covariance_from_estimates
                       ? information_with_floor(epnp_information + icp_information, floor_information)
                       : floor_information;

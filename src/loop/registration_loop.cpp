@@ -1,18 +1,9 @@
 #include "loop/registration_loop.h"
 
 #include "loop/constraint_fusion.h"
+#include "loop/pose_graph.h"
 
 namespace vilslam::loop {
-
-namespace {
-
-Mat6 diagonal_information(double sigma_m, double sigma_rad) {
-  Mat6 information = Mat6::Zero();
-  information.diagonal() << Vec3::Constant(1.0 / (sigma_m * sigma_m)), Vec3::Constant(1.0 / (sigma_rad * sigma_rad));
-  return information;
-}
-
-}  // namespace
 
 std::optional<RegistrationLoop> registration_loop(const std::vector<KeyFrame>& map_key_frames,
                                                   const Trajectory& map_poses, const SE3& T_W_Lv,
@@ -30,10 +21,10 @@ std::optional<RegistrationLoop> registration_loop(const std::vector<KeyFrame>& m
   for (const Vec6& v : degenerate_directions) degenerate += v.normalized() * v.normalized().transpose();
   const Mat6 keep = Mat6::Identity() - degenerate;
   const Mat6 measured = keep * information_Lv * keep / (sigmas.point_m * sigmas.point_m) +
-                        degenerate * diagonal_information(sigmas.degenerate_m, sigmas.degenerate_rad) * degenerate;
+                        degenerate * information_from_sigmas(sigmas.degenerate_m, sigmas.degenerate_rad) * degenerate;
   const SE3& T_W_Lu = map_poses[*nearest].T_W_B;
   return RegistrationLoop{*nearest, T_W_Lu.inverse() * T_W_Lv,
-                          information_with_floor(measured, diagonal_information(sigmas.loop_m, sigmas.loop_rad))};
+                          information_with_floor(measured, information_from_sigmas(sigmas.loop_m, sigmas.loop_rad))};
 }
 
 }  // namespace vilslam::loop
