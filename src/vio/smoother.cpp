@@ -47,6 +47,11 @@ void Smoother::initialize(const NavState& x0, const Vec15& prior_sigma, const Fr
   add_observations(id, frame);
 }
 
+const NavState& Smoother::newest() const {
+  if (window_.empty()) throw std::logic_error("Smoother::newest before initialize or after reset");
+  return window_.back().x;
+}
+
 void Smoother::reset() {
   window_.clear();
   tracks_.clear();

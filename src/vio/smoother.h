@@ -51,7 +51,8 @@ class Smoother {
   bool initialized() const { return !window_.empty(); }
   // Drops the window, its landmarks and its prior (the VIO lost track); initialize() starts again.
   void reset();
-  const NavState& newest() const { return window_.back().x; }
+  // Throws std::logic_error before initialize() or after reset(): there is no newest state then.
+  const NavState& newest() const;
   // Covariance of the newest state: its 15x15 block of the inverse of the window's H after the solve.
   const Mat15& newest_covariance() const { return newest_covariance_; }
   std::vector<NavState> window_states() const;

@@ -118,7 +118,8 @@ void Vio::initialize_moving(const FrontendOutput& frame) {
   propagator_.reset(smoother_.newest(), imu_);
   publish_state(window.front(), 0.0);
   for (std::size_t k = 1; k < window.size(); ++k) {
-    publish_imu_poses(samples, window[k].t_ns);
+    // Lost again on one of these frames: no window to publish from, and the rest start the next alignment.
+    if (initialized()) publish_imu_poses(samples, window[k].t_ns);
     add_frame(window[k]);
   }
 }
