@@ -29,7 +29,7 @@ VioLoss VioLossCheck::check(const NavState& x, const Mat15& covariance, int fram
   // A frame with too few matches (a bare wall, a blackout) says nothing either way: it counts as consistent.
   const bool inconsistent = frame_matches >= config_.min_frame_matches &&
                             (landmarks < config_.min_landmark_share * frame_matches ||
-                             final_cost > config_.max_cost_per_landmark * std::max(landmarks, 1));
+                             final_cost > config_.max_cost_per_landmark * cost_scale_ * std::max(landmarks, 1));
   recent_.push_back(inconsistent);
   if (static_cast<int>(recent_.size()) > config_.recent_states) recent_.pop_front();
   const int count = static_cast<int>(std::count(recent_.begin(), recent_.end(), true));

@@ -19,7 +19,7 @@ struct VioLossConfig {
   double max_accel_bias_m_s2 = 2.0;    // MEMS accelerometer biases stay under ~0.5 m/s^2
   int min_frame_matches = 15;          // a frame with fewer matches says nothing about vision being rejected
   double min_landmark_share = 0.1;     // landmarks in the solve / the frame's matches below this: inconsistent
-  double max_cost_per_landmark = 15.0; // the solve's final cost / its landmarks above this: inconsistent
+  double max_cost_per_landmark = 15.0; // the solve's final cost / its landmarks above this: inconsistent (10 states)
   int recent_states = 10;              // of the last recent_states states,
   int inconsistent_states = 6;         // that many inconsistent: lost
 };
@@ -32,7 +32,10 @@ std::string vio_loss_name(VioLoss loss);
 // Keeps which of the recent states were inconsistent; check() is called once per solved state.
 class VioLossCheck {
  public:
-  explicit VioLossCheck(const VioLossConfig& config) : config_(config) {}
+  // window_states: the smoother's window (SmootherConfig::window_size). A consistent landmark's cost grows with its
+  // observations, up to one per state, so max_cost_per_landmark (set for a 10-state window) scales by window_states / 10.
+  explicit VioLossCheck(const VioLossConfig& config, int window_states = 10)
+      : config_(config), cost_scale_(window_states / 10.0) {}
 
   // final_cost: the window's cost after the solve (SmootherStats), landmarks: those with a vision factor in it.
   VioLoss check(const NavState& x, const Mat15& covariance, int frame_matches, int landmarks, double final_cost);
@@ -40,6 +43,7 @@ class VioLossCheck {
 
  private:
   VioLossConfig config_;
+  double cost_scale_;
   std::deque<bool> recent_;  // inconsistent or not, the newest last
 };
 

@@ -26,7 +26,7 @@ Vio::Vio(const RigCalibration& calib, const VioConfig& config)
       calib_(calib),
       smoother_(config.smoother, {calib.T_I_C0, calib.T_I_C1}, calib.imu, checked_focal_px(calib)),
       propagator_(calib.imu, Vec3(0, 0, -config.smoother.gravity_m_s2)),
-      loss_check_(config.loss) {}
+      loss_check_(config.loss, config.smoother.window_size) {}
 
 void Vio::add_imu(const ImuSample& sample) {
   if (!sample.gyro_rad_s.allFinite() || !sample.accel_m_s2.allFinite()) {

@@ -21,6 +21,18 @@ TEST(VioLossCheck, ANormalStateIsNotLost) {
   for (int k = 0; k < 50; ++k) EXPECT_EQ(check.check(moving_state(), Mat15::Identity(), 200, 180, 180.0), VioLoss::kNone);
 }
 
+// The cost of a consistent landmark grows with its observations: a 20-state window's landmarks may cost twice
+// a 10-state window's before they count as inconsistent (a realistic tunnel run with 20 states was declared lost
+// 12 times with the unscaled threshold, never with it doubled).
+TEST(VioLossCheck, TheCostThresholdScalesWithTheWindow) {
+  VioLossConfig config;
+  config.recent_states = config.inconsistent_states = 1;
+  const double cost = 25.0 * 180;  // 25 per landmark: over 15, under 30
+  EXPECT_EQ(VioLossCheck(config, 10).check(moving_state(), Mat15::Identity(), 200, 180, cost), VioLoss::kInconsistent);
+  EXPECT_EQ(VioLossCheck(config, 20).check(moving_state(), Mat15::Identity(), 200, 180, cost), VioLoss::kNone);
+  EXPECT_EQ(VioLossCheck(config, 20).check(moving_state(), Mat15::Identity(), 200, 180, 2.2 * cost), VioLoss::kInconsistent);
+}
+
 TEST(VioLossCheck, NotFiniteSpeedAndBiasAreLostAtOnce) {
   VioLossCheck check({});
   NavState x = moving_state();
