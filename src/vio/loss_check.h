@@ -32,8 +32,9 @@ std::string vio_loss_name(VioLoss loss);
 // Keeps which of the recent states were inconsistent; check() is called once per solved state.
 class VioLossCheck {
  public:
-  // window_states: the smoother's window (SmootherConfig::window_size). A consistent landmark's cost grows with its
-  // observations, up to one per state, so max_cost_per_landmark (set for a 10-state window) scales by window_states / 10.
+  // window_states: the smoother's window (SmootherConfig::window_size). A consistent landmark's cost grows with
+  // its observations, up to one per state, so max_cost_per_landmark (set for a 10-state window) scales by
+  // window_states / 10.
   explicit VioLossCheck(const VioLossConfig& config, int window_states = 10)
       : config_(config), cost_scale_(window_states / 10.0) {}
 

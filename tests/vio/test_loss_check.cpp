@@ -30,7 +30,8 @@ TEST(VioLossCheck, TheCostThresholdScalesWithTheWindow) {
   const double cost = 25.0 * 180;  // 25 per landmark: over 15, under 30
   EXPECT_EQ(VioLossCheck(config, 10).check(moving_state(), Mat15::Identity(), 200, 180, cost), VioLoss::kInconsistent);
   EXPECT_EQ(VioLossCheck(config, 20).check(moving_state(), Mat15::Identity(), 200, 180, cost), VioLoss::kNone);
-  EXPECT_EQ(VioLossCheck(config, 20).check(moving_state(), Mat15::Identity(), 200, 180, 2.2 * cost), VioLoss::kInconsistent);
+  EXPECT_EQ(VioLossCheck(config, 20).check(moving_state(), Mat15::Identity(), 200, 180, 2.2 * cost),
+            VioLoss::kInconsistent);
 }
 
 TEST(VioLossCheck, NotFiniteSpeedAndBiasAreLostAtOnce) {

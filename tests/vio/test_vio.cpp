@@ -197,7 +197,7 @@ TEST(Vio, DeclaresItselfLostAndStartsAgain) {
   EXPECT_LT(restart_jump_m, before_error_m + 0.25);
 }
 
-// A restarted window lost again while its alignment window is replayed (on a real tunnel run a 20-state window did
+// A restarted window lost again while its alignment window is replayed (on a simulated tunnel run a 20-state window did
 // this): the replay stops publishing (before, it propagated from the dropped window, undefined behaviour that put
 // poses 1e29 m away and back in time into the output), and the frames left over start the next alignment.
 TEST(Vio, LostAgainWhileReplayingTheAlignmentWindow) {
