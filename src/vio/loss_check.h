@@ -32,11 +32,13 @@ std::string vio_loss_name(VioLoss loss);
 // Keeps which of the recent states were inconsistent; check() is called once per solved state.
 class VioLossCheck {
  public:
-  // window_states: the smoother's window (SmootherConfig::window_size). A consistent landmark's cost grows with
-  // its observations, up to one per state, so max_cost_per_landmark (set for a 10-state window) scales by
-  // window_states / 10.
-  explicit VioLossCheck(const VioLossConfig& config, int window_states = 10)
-      : config_(config), cost_scale_(window_states / 10.0) {}
+  // The window max_cost_per_landmark is set for (the smoother's default, SmootherConfig::window_size).
+  static constexpr int kReferenceWindowStates = 10;
+
+  // window_states: the smoother's window. A consistent landmark's cost grows with its observations, up to one per
+  // state, so max_cost_per_landmark scales by window_states / kReferenceWindowStates.
+  explicit VioLossCheck(const VioLossConfig& config, int window_states = kReferenceWindowStates)
+      : config_(config), cost_scale_(static_cast<double>(window_states) / kReferenceWindowStates) {}
 
   // final_cost: the window's cost after the solve (SmootherStats), landmarks: those with a vision factor in it.
   VioLoss check(const NavState& x, const Mat15& covariance, int frame_matches, int landmarks, double final_cost);
