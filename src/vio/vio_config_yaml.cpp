@@ -1,5 +1,7 @@
 #include "vio/vio_config_yaml.h"
 
+#include <cmath>
+
 #include "common/error.h"
 
 namespace vilslam {
@@ -45,6 +47,8 @@ YamlFields vio_yaml_fields(VioConfig& c) {
       yaml_value("moving_velocity_sigma_m_s", c.moving_velocity_sigma_m_s),
       yaml_value("prior_gyro_bias_sigma_rad_s", c.prior_gyro_bias_sigma_rad_s),
       yaml_value("prior_accel_bias_sigma_m_s2", c.prior_accel_bias_sigma_m_s2),
+      yaml_value("unturned_tilt_sigma_rad", c.unturned_tilt_sigma_rad),
+      yaml_value("tilt_turn_rad", c.tilt_turn_rad),
   };
 }
 
@@ -54,6 +58,8 @@ void validate_vio_config(const VioConfig& c, const std::string& source) {
   };
   const SmootherConfig& s = c.smoother;
   require(s.window_size >= 2, "smoother.window_size must be >= 2");
+  require(c.unturned_tilt_sigma_rad >= 0, "unturned_tilt_sigma_rad must be >= 0");
+  require(c.tilt_turn_rad >= 0 && c.tilt_turn_rad <= M_PI, "tilt_turn_rad must be in [0, pi]");
   require(s.pixel_sigma_px > 0, "smoother.pixel_sigma_px must be > 0");
   require(s.gravity_m_s2 > 0, "smoother.gravity_m_s2 must be > 0");
   require(s.outlier_normal_quantile > 0, "smoother.outlier_normal_quantile must be > 0");
