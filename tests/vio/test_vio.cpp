@@ -107,9 +107,9 @@ TEST(Vio, InitializesStaticAndTracksTheMotion) {
 TEST(Vio, TiltSigmaIsFlooredUntilTheRigHasTurned) {
   test::AnalyticMotion motion;
   motion.rest_s = 1.0;
-  const VioConfig config;
-  VioConfig no_floor;
-  no_floor.unturned_tilt_sigma_rad = 0.0;
+  VioConfig config;
+  config.unturned_tilt_sigma_rad = 0.035;
+  const VioConfig no_floor;  // the default: off
   const AnalyticFlight f = fly_analytic_motion(motion, {}, config);
   const AnalyticFlight g = fly_analytic_motion(motion, {}, no_floor);
   ASSERT_EQ(f.imu_poses.size(), g.imu_poses.size());
