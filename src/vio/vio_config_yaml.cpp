@@ -58,8 +58,6 @@ void validate_vio_config(const VioConfig& c, const std::string& source) {
   };
   const SmootherConfig& s = c.smoother;
   require(s.window_size >= 2, "smoother.window_size must be >= 2");
-  require(c.unturned_tilt_sigma_rad >= 0, "unturned_tilt_sigma_rad must be >= 0");
-  require(c.tilt_turn_rad >= 0 && c.tilt_turn_rad <= M_PI, "tilt_turn_rad must be in [0, pi]");
   require(s.pixel_sigma_px > 0, "smoother.pixel_sigma_px must be > 0");
   require(s.gravity_m_s2 > 0, "smoother.gravity_m_s2 must be > 0");
   require(s.outlier_normal_quantile > 0, "smoother.outlier_normal_quantile must be > 0");
@@ -93,6 +91,8 @@ void validate_vio_config(const VioConfig& c, const std::string& source) {
           "prior_velocity_sigma_m_s and moving_velocity_sigma_m_s must be > 0");
   require(c.prior_gyro_bias_sigma_rad_s > 0, "prior_gyro_bias_sigma_rad_s must be > 0");
   require(c.prior_accel_bias_sigma_m_s2 > 0, "prior_accel_bias_sigma_m_s2 must be > 0");
+  require(c.unturned_tilt_sigma_rad >= 0, "unturned_tilt_sigma_rad must be >= 0");
+  require(c.tilt_turn_rad >= 0 && c.tilt_turn_rad <= M_PI, "tilt_turn_rad must be in [0, pi]");
 }
 
 }  // namespace vilslam
