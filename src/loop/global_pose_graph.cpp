@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -25,9 +26,10 @@ GlobalPoseGraph::GlobalPoseGraph(const GlobalPoseGraphConfig& config)
     : config_(config),
       odometry_covariance_(information_from_sigmas(config.odometry_sigma_m, config.odometry_sigma_rad).inverse()) {
   if (config.anchor_spacing == 0 || config.max_anchors < 2 || !(config.degenerate_sigma >= 0.0) ||
+      !(config.mount_tilt_sigma_rad >= 0.0) || !std::isfinite(config.mount_tilt_sigma_rad) ||
       !(config.tilt_sigma_rad >= 0.0)) {
     throw std::invalid_argument("global pose graph: anchor_spacing must be >= 1, max_anchors >= 2, degenerate_sigma "
-                                "and tilt_sigma_rad >= 0");
+                                "and tilt_sigma_rad >= 0, mount_tilt_sigma_rad finite and >= 0");
   }
 }
 
@@ -173,6 +175,7 @@ CorrectionSummary GlobalPoseGraph::optimize() {
     for (std::size_t k = map_loops_.empty() ? 1 : 0; k < anchors.size(); ++k) {  // a fixed first pose needs none
       if (const auto& up = up_L_[anchors[k]]) reduced.add_tilt({first + k, R_offset * up->up_L, up->sigma_rad});
     }
+    if (config_.mount_tilt_sigma_rad > 0.0) reduced.estimate_up_rotation(config_.mount_tilt_sigma_rad);
   }
   PoseGraphOptions options;
   options.loop_loss = config_.loop_loss;
@@ -192,6 +195,7 @@ CorrectionSummary GlobalPoseGraph::optimize() {
   summary.converged = solved.converged;
   summary.initial_cost = solved.initial_cost;
   summary.final_cost = solved.final_cost;
+  summary.up_rotation_L = reduced.up_rotation();
   summary.solve_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return summary;
 }

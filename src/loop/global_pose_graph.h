@@ -36,6 +36,12 @@ struct GlobalPoseGraphConfig {
   // apart, and without turns the whole goes to the map's tilt, as before. Off by default: worse on the tuning
   // seeds (docs/pose_graph.md).
   bool tilt_offset = false;
+  // Prior sigma (rad) of a rotation eps_L estimated in every correction with the poses and applied to every tilt
+  // factor's up direction (PoseGraph::estimate_up_rotation); 0 = none. A mount pitched against its calibration
+  // pitches every pose the tilt factors hold, and the odometry's forward motion then descends along the whole
+  // route, which a loop contradicts: a loop makes the mount's pitch observable (docs/pose_graph.md, "The
+  // mount's tilt estimated in the graph").
+  double mount_tilt_sigma_rad = 0.0;
   RobustLoss loop_loss = RobustLoss::kHuber;
   // Whitened units. 1 bounds a wrong loop's pull best; 3.5 converges in fewer iterations but lets a wrong
   // loop pull 4x harder (docs/pose_graph.md, "Bounded correction").
@@ -54,6 +60,7 @@ struct CorrectionSummary {
   bool converged = false;
   double initial_cost = 0.0;
   double final_cost = 0.0;
+  Vec3 up_rotation_L = Vec3::Zero();  // eps_L of config.mount_tilt_sigma_rad (rad), zero when not estimated
 };
 
 class GlobalPoseGraph {
