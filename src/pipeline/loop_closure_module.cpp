@@ -29,6 +29,7 @@ LoopClosureModule::LoopClosureModule(const loop::LoopClosureConfig& config,
                                      const Trajectory* imu_motion)
     : config_(config), vocabulary_(std::move(vocabulary)), calib_(calib), rig_(make_stereo_rig(calib)),
       frontend_config_(frontend_config), imu_motion_(imu_motion), map_radius_m_(lidar.map.edges.max_distance_m),
+      estimates_mount_tilt_(graph_config.mount_tilt_sigma_rad > 0.0 && graph_config.tilt_sigma_rad > 0.0),
       graph_(graph_config) {
   if (config_.enabled) closer_.emplace(config_, lidar, vocabulary_);
 }
@@ -104,7 +105,7 @@ void LoopClosureModule::add_key_frame(const PendingKeyScan& scan, const StereoFr
   }
   if (!loop_found) return;
   start = std::chrono::steady_clock::now();
-  graph_.optimize();
+  note_correction(graph_.optimize());
   // The mapper resumes from its latest pose, corrected; lidar.tum stays continuous.
   correction_ = correction_at(graph_.size() - 1);
   out_.correction_ms.push_back(elapsed_ms(start));
@@ -169,6 +170,10 @@ std::optional<SE3> LoopClosureModule::resume_guess(TimeNs query_t_ns) const {
   return SE3(R_yaw, T_map_run.translation());
 }
 
+void LoopClosureModule::note_correction(const loop::CorrectionSummary& summary) {
+  if (estimates_mount_tilt_) out_.mount_tilt_L = summary.up_rotation_L;
+}
+
 MapCorrection LoopClosureModule::correction_at(std::size_t pose_index) const {
   MapCorrection c;
   c.T_W_L_last = graph_.pose(pose_index);
@@ -217,7 +222,7 @@ void LoopClosureModule::scan_mapped(const lidar::LidarMappingResult& mapped, con
     // of single key scans, from a guess, against the registration of this sweep on all the key scans around it.
     graph_.remove_map_loops(resumed_map_loops_);
     resumed_map_loops_.clear();
-    graph_.optimize();
+    note_correction(graph_.optimize());
     out_.correction_ms.push_back(elapsed_ms(start));
   }
   last_mapper_T_W_L_ = mapped.T_W_L;

@@ -39,6 +39,9 @@ struct LoopClosureOutput {
   std::optional<TimeNs> relocalized_t_ns;
   SE3 T_map_run;
   std::size_t map_loops = 0;
+  // With loop_closure.graph.mount_tilt_sigma_rad > 0: the rotation of the measured up directions (the LiDAR
+  // mount's tilt error, in L, rad) that the last correction estimated; none before a correction.
+  std::optional<Vec3> mount_tilt_L;
 };
 
 // What LiDAR mapping must do after a loop: resume from T_W_L_last on a map rebuilt from the key scans.
@@ -98,6 +101,8 @@ class LoopClosureModule {
   // After a reset, within resume_window_s of the new segment's first pose: where its frame lies in the map if
   // the map's last pose is carried across the reset by the segment's first motion (LoopCloser::set_resume_guess).
   std::optional<SE3> resume_guess(TimeNs query_t_ns) const;
+  // Keeps what a correction estimated that the outputs report (the mount's tilt).
+  void note_correction(const loop::CorrectionSummary& summary);
 
   loop::LoopClosureConfig config_;
   std::shared_ptr<const Vocabulary> vocabulary_;
@@ -106,6 +111,7 @@ class LoopClosureModule {
   FrontendConfig frontend_config_;
   const Trajectory* imu_motion_;
   double map_radius_m_;
+  bool estimates_mount_tilt_;  // graph config: mount_tilt_sigma_rad and tilt_sigma_rad > 0
   std::optional<loop::LoopCloser> closer_;
   loop::GlobalPoseGraph graph_;
   std::deque<StereoFrame> recent_frames_;

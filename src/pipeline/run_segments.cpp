@@ -93,6 +93,7 @@ void append_segment(OfflineRunResult& run, OfflineRunResult&& segment, TimeNs st
     append(to.detection_ms, std::move(from.detection_ms));
     append(to.correction_ms, std::move(from.correction_ms));
     to.map_loops += from.map_loops;
+    if (from.mount_tilt_L) to.mount_tilt_L = from.mount_tilt_L;  // the latest segment's estimate
   }
 }
 
