@@ -132,8 +132,9 @@ void build_room(SceneBuilder& builder, double length_m, const std::optional<Eige
     const Vec3 c = starts[side] + along * dirs[side] + (0.5 * w + 0.05) * inward + Vec3(0, 0, 0.5 * h);
     builder.add(Box(c, Mat3::Identity(), Vec3(0.5 * w, 0.5 * w, 0.5 * h)), rng.pick(clutter));
   }
-  for (const Eigen::Vector2d corner : {Eigen::Vector2d(hi.x() - 0.5, lo.y() + 0.5), Eigen::Vector2d(hi.x() - 0.5, hi.y() - 0.5),
-                                       Eigen::Vector2d(lo.x() + 0.5, hi.y() - 0.5)}) {
+  for (const Eigen::Vector2d& corner : {Eigen::Vector2d(hi.x() - 0.5, lo.y() + 0.5),
+                                        Eigen::Vector2d(hi.x() - 0.5, hi.y() - 0.5),
+                                        Eigen::Vector2d(lo.x() + 0.5, hi.y() - 0.5)}) {
     builder.add(Cylinder(corner, lo.z(), lo.z() + rng.uniform(1.2, 2.5), rng.uniform(0.15, 0.3)), rng.pick(clutter));
   }
   // Ceiling beams across the room (two in the Vicon room, one per 3 m in a grown one).

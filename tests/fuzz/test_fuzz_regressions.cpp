@@ -71,7 +71,9 @@ TEST(FuzzRegressions, EveryKeptInputIsListed) {
   const fs::path root = kFuzzDir / "regressions";
   if (!fs::exists(root)) return;
   for (const auto& file : fs::recursive_directory_iterator(root)) {
-    if (file.is_regular_file()) EXPECT_TRUE(listed.count(fs::relative(file.path(), root))) << file.path();
+    if (file.is_regular_file()) {
+      EXPECT_TRUE(listed.count(fs::relative(file.path(), root))) << file.path();
+    }
   }
 }
 

@@ -164,7 +164,7 @@ TEST(Shapes, UvIsContinuousInMetresAcrossAFace) {
   const World world = World::generate(Scenario::kTunnel, 2);
   const Vec3 o = world.route_W().front();
   // Two nearby rays on the vault: their uv distance equals the distance between the hit points.
-  for (const Vec3 d : {Vec3(0.3, 0.2, 0.9), Vec3(0.1, -0.9, 0.4), Vec3(0.2, 0.95, 0.1)}) {
+  for (const Vec3& d : {Vec3(0.3, 0.2, 0.9), Vec3(0.1, -0.9, 0.4), Vec3(0.2, 0.95, 0.1)}) {
     const Vec3 d0 = d.normalized(), d1 = (d + Vec3(0, 0.002, 0.001)).normalized();
     const auto h0 = world.raycast(o, d0, 50), h1 = world.raycast(o, d1, 50);
     ASSERT_TRUE(h0 && h1);

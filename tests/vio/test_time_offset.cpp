@@ -15,7 +15,9 @@ TEST(TimeOffset, RecoversTheOffsetAndTheGyroBias) {
     EXPECT_NEAR(e->offset_s, offset_s, 0.0002) << offset_s;
     EXPECT_LT((e->gyro_bias_rad_s - bias).norm(), 0.002) << offset_s;
     EXPECT_GT(e->intervals, 500);
-    if (offset_s != 0) EXPECT_GT(e->rms_zero_offset_rad, 1.2 * e->rms_rad) << offset_s;
+    if (offset_s != 0) {
+      EXPECT_GT(e->rms_zero_offset_rad, 1.2 * e->rms_rad) << offset_s;
+    }
   }
 }
 
