@@ -195,7 +195,7 @@ CorrectionSummary GlobalPoseGraph::optimize() {
   summary.converged = solved.converged;
   summary.initial_cost = solved.initial_cost;
   summary.final_cost = solved.final_cost;
-  summary.up_rotation_L = reduced.up_rotation();
+  if (config_.tilt_sigma_rad > 0.0 && config_.mount_tilt_sigma_rad > 0.0) summary.up_rotation_L = reduced.up_rotation();
   summary.solve_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return summary;
 }

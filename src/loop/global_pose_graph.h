@@ -60,7 +60,7 @@ struct CorrectionSummary {
   bool converged = false;
   double initial_cost = 0.0;
   double final_cost = 0.0;
-  Vec3 up_rotation_L = Vec3::Zero();  // eps_L of config.mount_tilt_sigma_rad (rad), zero when not estimated
+  std::optional<Vec3> up_rotation_L;  // eps_L of config.mount_tilt_sigma_rad (rad), when estimated
 };
 
 class GlobalPoseGraph {

@@ -29,7 +29,6 @@ LoopClosureModule::LoopClosureModule(const loop::LoopClosureConfig& config,
                                      const Trajectory* imu_motion)
     : config_(config), vocabulary_(std::move(vocabulary)), calib_(calib), rig_(make_stereo_rig(calib)),
       frontend_config_(frontend_config), imu_motion_(imu_motion), map_radius_m_(lidar.map.edges.max_distance_m),
-      estimates_mount_tilt_(graph_config.mount_tilt_sigma_rad > 0.0 && graph_config.tilt_sigma_rad > 0.0),
       graph_(graph_config) {
   if (config_.enabled) closer_.emplace(config_, lidar, vocabulary_);
 }
@@ -171,7 +170,7 @@ std::optional<SE3> LoopClosureModule::resume_guess(TimeNs query_t_ns) const {
 }
 
 void LoopClosureModule::note_correction(const loop::CorrectionSummary& summary) {
-  if (estimates_mount_tilt_) out_.mount_tilt_L = summary.up_rotation_L;
+  if (summary.up_rotation_L) out_.mount_tilt_L = summary.up_rotation_L;
 }
 
 MapCorrection LoopClosureModule::correction_at(std::size_t pose_index) const {

@@ -111,7 +111,6 @@ class LoopClosureModule {
   FrontendConfig frontend_config_;
   const Trajectory* imu_motion_;
   double map_radius_m_;
-  bool estimates_mount_tilt_;  // graph config: mount_tilt_sigma_rad and tilt_sigma_rad > 0
   std::optional<loop::LoopCloser> closer_;
   loop::GlobalPoseGraph graph_;
   std::deque<StereoFrame> recent_frames_;
