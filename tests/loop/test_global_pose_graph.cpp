@@ -415,6 +415,51 @@ TEST(GlobalPoseGraph, TheMountsTiltDoesNotBendAnOutAndBackRoute) {
   }
 }
 
+// Why a pitched mount shortens a corridor (docs/pose_graph.md, "The mount's tilt estimated in the graph"): the same
+// out-and-back route, every straight step degenerate along its axis (a corridor). Tilt factors that hold a pose 0.5 deg
+// off the odometry's pitch leave each level step a vertical residual |t| sin(0.5 deg), and shortening the step shrinks
+// it; along a degenerate axis length costs (0.01^2 + 0.1^2) / 0.01^2 = 101 times less, and both legs shrink alike, so
+// the loop between the ends does not see it. Without the added sigma, or with the mount's tilt estimated in the
+// correction, the legs keep their length.
+TEST(GlobalPoseGraph, APitchAgainstTheOdometryShortensDegenerateLegsUnlessTheMountIsEstimated) {
+  const Mat3 mount_error = so3::exp(Vec3(0.0, 0.5 * M_PI / 180.0, 0.0));
+  const int leg = 200;  // 40 m each way
+  const Vec6 along_x = (Vec6() << 1, 0, 0, 0, 0, 0).finished();
+  struct Case {
+    double degenerate_sigma;
+    double mount_tilt_sigma_rad;
+  };
+  for (const Case c : {Case{0.1, 0.0}, Case{0.0, 0.0}, Case{0.1, 0.0175}}) {
+    loop::GlobalPoseGraphConfig config;
+    config.degenerate_sigma = c.degenerate_sigma;
+    config.mount_tilt_sigma_rad = c.mount_tilt_sigma_rad;
+    loop::GlobalPoseGraph graph(config);
+    graph.add_first_pose(0, SE3());
+    graph.set_up_direction(0, mount_error.transpose() * Vec3::UnitZ());
+    for (int i = 1; i <= 2 * leg + 1; ++i) {
+      const bool turn = i == leg + 1;
+      graph.add_odometry(i * 100'000'000LL,
+                         turn ? SE3(so3::exp_quat(Vec3(0, 0, M_PI)), Vec3::Zero()) : SE3(Quat::Identity(), Vec3(0.2, 0, 0)),
+                         turn ? std::vector<Vec6>{} : std::vector<Vec6>{along_x});
+      graph.set_up_direction(graph.size() - 1, mount_error.transpose() * Vec3::UnitZ());
+    }
+    graph.add_loop(0, graph.size() - 1, SE3(so3::exp_quat(Vec3(0, 0, M_PI)), Vec3::Zero()),
+                   loop::information_from_sigmas(0.01, 0.001));
+    graph.optimize();
+    const double out_m = graph.pose(leg).translation().x() - graph.pose(0).translation().x();
+    const double back_m = graph.pose(leg + 1).translation().x() - graph.pose(2 * leg + 1).translation().x();
+    std::printf("degenerate sigma %.2f, mount sigma %.4f: legs %.4f and %.4f m off\n", c.degenerate_sigma,
+                c.mount_tilt_sigma_rad, out_m - 0.2 * leg, back_m - 0.2 * leg);
+    if (c.degenerate_sigma > 0.0 && c.mount_tilt_sigma_rad == 0.0) {
+      EXPECT_LT(out_m - 0.2 * leg, -0.1);
+      EXPECT_LT(back_m - 0.2 * leg, -0.1);
+    } else {
+      EXPECT_NEAR(out_m, 0.2 * leg, 0.01);
+      EXPECT_NEAR(back_m, 0.2 * leg, 0.01);
+    }
+  }
+}
+
 // The composed covariance is the first-order propagation: sum_i J_i Sigma J_i^T with J_i the derivative of the
 // chain's error Log(Z_ab^-1 prod_j Z_j Exp(eps_j)) by eps_i, here by central differences.
 // Re-localization in a saved map (docs/loop.md, "Map reuse"): the drifted square fed in a frame of its own,
