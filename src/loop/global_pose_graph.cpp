@@ -27,9 +27,9 @@ GlobalPoseGraph::GlobalPoseGraph(const GlobalPoseGraphConfig& config)
       odometry_covariance_(information_from_sigmas(config.odometry_sigma_m, config.odometry_sigma_rad).inverse()) {
   if (config.anchor_spacing == 0 || config.max_anchors < 2 || !(config.degenerate_sigma >= 0.0) ||
       !(config.mount_tilt_sigma_rad >= 0.0) || !std::isfinite(config.mount_tilt_sigma_rad) ||
-      !(config.tilt_sigma_rad >= 0.0)) {
+      !(config.tilt_sigma_rad >= 0.0) || !(config.bearing_min_step_m >= 0.0) || !std::isfinite(config.bearing_min_step_m)) {
     throw std::invalid_argument("global pose graph: anchor_spacing must be >= 1, max_anchors >= 2, degenerate_sigma "
-                                "and tilt_sigma_rad >= 0, mount_tilt_sigma_rad finite and >= 0");
+                                "and tilt_sigma_rad >= 0, mount_tilt_sigma_rad and bearing_min_step_m finite and >= 0");
   }
 }
 
@@ -181,6 +181,7 @@ CorrectionSummary GlobalPoseGraph::optimize() {
   options.loop_loss = config_.loop_loss;
   options.loop_loss_scale = config_.loop_loss_scale;
   options.max_iterations = config_.max_iterations;
+  options.bearing_min_step_m = config_.bearing_min_step_m;
   const PoseGraphSummary solved = reduced.optimize(options);
 
   for (std::size_t k = 0; k < anchors.size(); ++k) poses_[anchors[k]].T_W_B = reduced.poses()[first + k].T_W_B;

@@ -114,7 +114,9 @@ PoseGraphSummary PoseGraph::optimize(const PoseGraphOptions& options) {
   for (PoseBlock& b : blocks) problem.AddParameterBlock(b.data(), kPoseBlockSize, &pose_manifold);
   for (const RelativePoseConstraint& c : constraints_) {
     auto* cost = new ceres::AutoDiffCostFunction<RelativePoseFactor, 6, kPoseBlockSize, kPoseBlockSize>(
-        new RelativePoseFactor(c.T_from_to, sqrt_information(c.information)));
+        new RelativePoseFactor(c.T_from_to, sqrt_information(c.information),
+                               options.bearing_min_step_m > 0.0 && c.kind == ConstraintKind::kOdometry &&
+                                   c.T_from_to.translation().norm() >= options.bearing_min_step_m));
     ceres::LossFunction* loss =
         c.kind == ConstraintKind::kLoop ? make_loss(options.loop_loss, options.loop_loss_scale).release() : nullptr;
     problem.AddResidualBlock(cost, loss, blocks[c.from_index].data(), blocks[c.to_index].data());

@@ -38,6 +38,9 @@ struct PoseGraphOptions {
   RobustLoss loop_loss = RobustLoss::kHuber;  // applied to loop factors only
   double loop_loss_scale = 1.0;                // in whitened units (sigmas)
   int max_iterations = 100;
+  // Odometry factors whose measured translation is at least this long (m) compare it as a length and a bearing
+  // (RelativePoseFactor); 0 = none.
+  double bearing_min_step_m = 0.0;
   double function_tolerance = 1e-12;
   double gradient_tolerance = 1e-14;
   double parameter_tolerance = 1e-12;

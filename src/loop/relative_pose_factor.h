@@ -40,9 +40,15 @@ Eigen::Matrix<T, 6, 1> se3_log(const Eigen::Quaternion<T>& q, const Eigen::Matri
 
 class RelativePoseFactor {
  public:
-  // sqrt_information: upper-triangular U with U^T U = information.
-  RelativePoseFactor(const SE3& T_meas, const Mat6& sqrt_information)
-      : q_meas_inv_(T_meas.quat().conjugate()), t_meas_(T_meas.translation()), sqrt_information_(sqrt_information) {}
+  // sqrt_information: upper-triangular U with U^T U = information. bearing_at_measured_length (a measured
+  // translation that is not zero): the estimated translation is compared as a length and a bearing, the bearing's
+  // error taken at the measured length, so that a step cannot shrink a residual across it by getting shorter
+  // (docs/pose_graph.md, "Length and bearing of a step"). To first order the residual is the same.
+  RelativePoseFactor(const SE3& T_meas, const Mat6& sqrt_information, bool bearing_at_measured_length = false)
+      : q_meas_inv_(T_meas.quat().conjugate()),
+        t_meas_(T_meas.translation()),
+        sqrt_information_(sqrt_information),
+        bearing_at_measured_length_(bearing_at_measured_length) {}
 
   // r = U Log(T_meas^-1 (T_W_u^-1 T_W_v)) (paper: both factors measure (L_u)^-1 L_v).
   template <typename T>
@@ -56,7 +62,16 @@ class RelativePoseFactor {
     const Quat_t q_u_W = q_W_u.conjugate();
     const Quat_t q_meas_inv = q_meas_inv_.template cast<T>();
     const Quat_t q_err = q_meas_inv * (q_u_W * q_W_v);
-    const Vec3_t t_err = q_meas_inv * (q_u_W * (t_W_v - t_W_u) - t_meas_.template cast<T>());
+    Vec3_t t_u_v = q_u_W * (t_W_v - t_W_u);
+    if (bearing_at_measured_length_) {
+      // |t_meas| t / |t| + (|t| - |t_meas|) t_meas / |t_meas|: a change of length alone, or of direction alone,
+      // gives t itself; the part across t_meas no longer scales with the estimated length |t|.
+      using std::sqrt;
+      const T length = sqrt(t_u_v.squaredNorm());
+      const double measured_m = t_meas_.norm();
+      t_u_v = t_u_v * (T(measured_m) / length) + (length - T(measured_m)) * (t_meas_ / measured_m).template cast<T>();
+    }
+    const Vec3_t t_err = q_meas_inv * (t_u_v - t_meas_.template cast<T>());
     Eigen::Map<Eigen::Matrix<T, 6, 1>> r(residual);
     r = sqrt_information_.template cast<T>() * se3_log(q_err, t_err);
     return true;
@@ -66,6 +81,7 @@ class RelativePoseFactor {
   Quat q_meas_inv_;
   Vec3 t_meas_;
   Mat6 sqrt_information_;
+  bool bearing_at_measured_length_;
 };
 
 }  // namespace vilslam::loop

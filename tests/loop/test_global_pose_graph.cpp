@@ -419,8 +419,8 @@ TEST(GlobalPoseGraph, TheMountsTiltDoesNotBendAnOutAndBackRoute) {
 // out-and-back route, every straight step degenerate along its axis (a corridor). Tilt factors that hold a pose 0.5 deg
 // off the odometry's pitch leave each level step a vertical residual |t| sin(0.5 deg), and shortening the step shrinks
 // it; along a degenerate axis length costs (0.01^2 + 0.1^2) / 0.01^2 = 101 times less, and both legs shrink alike, so
-// the loop between the ends does not see it. Without the added sigma, or with the mount's tilt estimated in the
-// correction, the legs keep their length.
+// the loop between the ends does not see it. Without the added sigma, with the mount's tilt estimated in the
+// correction, or with the steps compared as length and bearing (bearing_min_step_m), the legs keep their length.
 TEST(GlobalPoseGraph, APitchAgainstTheOdometryShortensDegenerateLegsUnlessTheMountIsEstimated) {
   const Mat3 mount_error = so3::exp(Vec3(0.0, 0.5 * M_PI / 180.0, 0.0));
   const int leg = 200;  // 40 m each way
@@ -428,11 +428,13 @@ TEST(GlobalPoseGraph, APitchAgainstTheOdometryShortensDegenerateLegsUnlessTheMou
   struct Case {
     double degenerate_sigma;
     double mount_tilt_sigma_rad;
+    double bearing_min_step_m;
   };
-  for (const Case c : {Case{0.1, 0.0}, Case{0.0, 0.0}, Case{0.1, 0.0175}}) {
+  for (const Case c : {Case{0.1, 0.0, 0.0}, Case{0.0, 0.0, 0.0}, Case{0.1, 0.0175, 0.0}, Case{0.1, 0.0, 0.05}}) {
     loop::GlobalPoseGraphConfig config;
     config.degenerate_sigma = c.degenerate_sigma;
     config.mount_tilt_sigma_rad = c.mount_tilt_sigma_rad;
+    config.bearing_min_step_m = c.bearing_min_step_m;
     loop::GlobalPoseGraph graph(config);
     graph.add_first_pose(0, SE3());
     graph.set_up_direction(0, mount_error.transpose() * Vec3::UnitZ());
@@ -448,9 +450,9 @@ TEST(GlobalPoseGraph, APitchAgainstTheOdometryShortensDegenerateLegsUnlessTheMou
     graph.optimize();
     const double out_m = graph.pose(leg).translation().x() - graph.pose(0).translation().x();
     const double back_m = graph.pose(leg + 1).translation().x() - graph.pose(2 * leg + 1).translation().x();
-    std::printf("degenerate sigma %.2f, mount sigma %.4f: legs %.4f and %.4f m off\n", c.degenerate_sigma,
-                c.mount_tilt_sigma_rad, out_m - 0.2 * leg, back_m - 0.2 * leg);
-    if (c.degenerate_sigma > 0.0 && c.mount_tilt_sigma_rad == 0.0) {
+    std::printf("degenerate sigma %.2f, mount sigma %.4f, bearing from %.2f m: legs %.4f and %.4f m off\n",
+                c.degenerate_sigma, c.mount_tilt_sigma_rad, c.bearing_min_step_m, out_m - 0.2 * leg, back_m - 0.2 * leg);
+    if (c.degenerate_sigma > 0.0 && c.mount_tilt_sigma_rad == 0.0 && c.bearing_min_step_m == 0.0) {
       EXPECT_LT(out_m - 0.2 * leg, -0.1);
       EXPECT_LT(back_m - 0.2 * leg, -0.1);
     } else {

@@ -6,6 +6,8 @@
 #include <ceres/product_manifold.h>
 
 #include <array>
+#include <cmath>
+#include <utility>
 
 #include "loop/relative_pose_factor.h"
 
@@ -46,6 +48,31 @@ std::array<Case, 3> cases() {
   return {Case{T_W_u, T_W_v, T_u_v * pose(2.0, -1.5, 0.8, 0.3, 0.1, -0.2)},
           Case{T_W_u, T_W_v, T_u_v * pose(0.1, 0.05, -0.2, 0.3, 0.1, -0.2)},
           Case{T_W_u, T_W_v, T_u_v * pose(1e-7, -2e-7, 1e-7, 0.3, 0.1, -0.2)}};
+}
+
+// Length and bearing apart (docs/pose_graph.md, "Length and bearing of a step"): a step measured 1 m along x. An
+// estimate only longer, or only turned, gives the plain residual; one both shorter and turned keeps the turn's part
+// across the step at the measured length, where the plain residual shrinks it with the estimated length.
+TEST(RelativePoseFactor, BearingAtTheMeasuredLengthDoesNotShrinkWithTheStep) {
+  const SE3 T_meas(Quat::Identity(), Vec3(1.0, 0.0, 0.0));
+  const Block u = block_of(SE3());
+  const Mat6 I = Mat6::Identity();
+  const auto residuals = [&](const Vec3& t_u_v) {
+    const Block v = block_of(SE3(Quat::Identity(), t_u_v));
+    Vec6 plain, apart;
+    loop::RelativePoseFactor(T_meas, I)(u.data(), v.data(), plain.data());
+    loop::RelativePoseFactor(T_meas, I, true)(u.data(), v.data(), apart.data());
+    return std::make_pair(plain, apart);
+  };
+  const double angle = 0.01;
+  for (const Vec3& t : {Vec3(1.2, 0.0, 0.0), Vec3(std::cos(angle), 0.0, std::sin(angle))}) {
+    const auto [plain, apart] = residuals(t);
+    EXPECT_LT((plain - apart).norm(), 1e-12) << t.transpose();
+  }
+  const auto [plain, apart] = residuals(0.5 * Vec3(std::cos(angle), 0.0, std::sin(angle)));
+  EXPECT_NEAR(plain(2), 0.5 * std::sin(angle), 1e-12);
+  EXPECT_NEAR(apart(2), std::sin(angle), 1e-12);
+  EXPECT_NEAR(apart(0), plain(0), 1e-3);  // the length's part: 0.5 cos(angle) - 1 against 0.5 - 1
 }
 
 TEST(RelativePoseFactor, ResidualIsSe3Log) {

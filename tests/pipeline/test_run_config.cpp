@@ -46,7 +46,7 @@ TEST(RunConfig, SectionsReachTheirModulesAndMissingOnesKeepDefaults) {
   const OfflineRunConfig c = load_run_config(write_file(
       "frontend:\n  max_corners: 300\n  cross_check: false\nvio:\n  smoother:\n    window_size: 6\n"
       "lidar_mapper:\n  features:\n    half_window: 4\n  registration:\n    loss: huber\n  mapper:\n    dewarp: false\n"
-      "loop_closure:\n  graph:\n    mount_tilt_sigma_rad: 0.02\n"));
+      "loop_closure:\n  graph:\n    mount_tilt_sigma_rad: 0.02\n    bearing_min_step_m: 0.05\n"));
   EXPECT_EQ(c.frontend.max_corners, 300);
   EXPECT_FALSE(c.frontend.cross_check);
   EXPECT_EQ(c.vio.smoother.window_size, 6);
@@ -54,6 +54,7 @@ TEST(RunConfig, SectionsReachTheirModulesAndMissingOnesKeepDefaults) {
   EXPECT_EQ(c.lidar.lidar.registration.loss, lidar::RobustLoss::kHuber);
   EXPECT_FALSE(c.lidar.dewarp);
   EXPECT_EQ(c.graph.mount_tilt_sigma_rad, 0.02);
+  EXPECT_EQ(c.graph.bearing_min_step_m, 0.05);
   // Keys left out keep the mapper's defaults (not those of a bare LidarConfig).
   EXPECT_TRUE(c.lidar.lidar.registration.remap_degenerate_directions);
   EXPECT_EQ(c.lidar.lidar.registration.degenerate_min_eigenvalue_per_match,
@@ -67,6 +68,7 @@ TEST(RunConfig, SectionsReachTheirModulesAndMissingOnesKeepDefaults) {
   expected.lidar.lidar.registration.loss = lidar::RobustLoss::kHuber;
   expected.lidar.dewarp = false;
   expected.graph.mount_tilt_sigma_rad = 0.02;
+  expected.graph.bearing_min_step_m = 0.05;
   EXPECT_EQ(run_config_yaml(c), run_config_yaml(expected));
   // The written config reads back to the same config.
   EXPECT_EQ(run_config_yaml(load_run_config(write_file(run_config_yaml(c)))), run_config_yaml(c));
@@ -87,6 +89,7 @@ TEST(RunConfig, BadFilesNameTheFileAndTheKey) {
       {"lidar_mapper:\n  mapper:\n    dewrap: true\n", "lidar_mapper.mapper.dewrap"},
       {"loop_closure:\n  graph:\n    mount_tilt_sigma_rad: -0.01\n", "mount_tilt_sigma_rad"},
       {"loop_closure:\n  graph:\n    mount_tilt_sigma_rad: .inf\n", "mount_tilt_sigma_rad"},
+      {"loop_closure:\n  graph:\n    bearing_min_step_m: -0.05\n", "bearing_min_step_m"},
       {"vio: [1, 2]\n", "'vio'"},
       {"- 1\n- 2\n", "map"},
       {"frontend: {max_corners: [1, 2\n", "malformed"},
