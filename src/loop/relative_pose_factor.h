@@ -40,15 +40,16 @@ Eigen::Matrix<T, 6, 1> se3_log(const Eigen::Quaternion<T>& q, const Eigen::Matri
 
 class RelativePoseFactor {
  public:
-  // sqrt_information: upper-triangular U with U^T U = information. bearing_at_measured_length (a measured
-  // translation that is not zero): the estimated translation is compared as a length and a bearing, the bearing's
+  // sqrt_information: upper-triangular U with U^T U = information. bearing_at_measured_length (ignored when the
+  // measured translation is zero): the estimated translation is compared as a length and a bearing, the bearing's
   // error taken at the measured length, so that a step cannot shrink a residual across it by getting shorter
   // (docs/pose_graph.md, "Length and bearing of a step"). To first order the residual is the same.
   RelativePoseFactor(const SE3& T_meas, const Mat6& sqrt_information, bool bearing_at_measured_length = false)
       : q_meas_inv_(T_meas.quat().conjugate()),
         t_meas_(T_meas.translation()),
         sqrt_information_(sqrt_information),
-        bearing_at_measured_length_(bearing_at_measured_length) {}
+        measured_length_m_(t_meas_.norm()),
+        bearing_at_measured_length_(bearing_at_measured_length && measured_length_m_ > 0.0) {}
 
   // r = U Log(T_meas^-1 (T_W_u^-1 T_W_v)) (paper: both factors measure (L_u)^-1 L_v).
   template <typename T>
@@ -68,8 +69,8 @@ class RelativePoseFactor {
       // gives t itself; the part across t_meas no longer scales with the estimated length |t|.
       using std::sqrt;
       const T length = sqrt(t_u_v.squaredNorm());
-      const double measured_m = t_meas_.norm();
-      t_u_v = t_u_v * (T(measured_m) / length) + (length - T(measured_m)) * (t_meas_ / measured_m).template cast<T>();
+      const T measured_m(measured_length_m_);
+      t_u_v = t_u_v * (measured_m / length) + (length - measured_m) * (t_meas_ / measured_length_m_).template cast<T>();
     }
     const Vec3_t t_err = q_meas_inv * (t_u_v - t_meas_.template cast<T>());
     Eigen::Map<Eigen::Matrix<T, 6, 1>> r(residual);
@@ -81,6 +82,7 @@ class RelativePoseFactor {
   Quat q_meas_inv_;
   Vec3 t_meas_;
   Mat6 sqrt_information_;
+  double measured_length_m_;
   bool bearing_at_measured_length_;
 };
 
