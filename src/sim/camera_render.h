@@ -14,6 +14,10 @@ struct RenderOptions {
   double noise_sigma_grey = 2.0;  // additive Gaussian pixel noise, grey levels (0..255)
   double exposure_gain = 1.0;     // multiplies radiance before quantization (exposure changes)
   int motion_blur_samples = 1;    // > 1: average of that many poses over the exposure time
+  // > 1: anisotropic texture filtering. The texture level follows the short axis of the pixel's footprint
+  // and up to that many lookups are averaged along its long axis, as a lens integrates a surface seen at a
+  // grazing angle; 1 filters by the long axis alone, which also blurs such a surface across (docs/sim_camera.md).
+  int anisotropic_samples = 1;
   double exposure_time_s = 0.005;
   // Share of the lens's natural cos^4 fall-off applied: brightness (1 - v) + v cos^4(angle off the optical
   // axis), so v = 0.5 leaves the simulator's camera's corners (44 deg off axis) at 0.64 of the centre.

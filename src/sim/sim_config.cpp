@@ -126,12 +126,13 @@ void read_lidar(const Reader& r, const YAML::Node& n, SimConfig& c) {
 }
 
 void read_render(const Reader& r, const YAML::Node& n, SimConfig& c) {
-  r.check_keys(n, {"noise_sigma_grey", "motion_blur_samples", "exposure_time_s", "exposure_variation",
-                   "exposure_period_s", "vignetting"},
+  r.check_keys(n, {"noise_sigma_grey", "motion_blur_samples", "anisotropic_samples", "exposure_time_s",
+                   "exposure_variation", "exposure_period_s", "vignetting"},
                "render");
   r.get(n, "vignetting", c.render.vignetting);
   r.get(n, "noise_sigma_grey", c.render.noise_sigma_grey);
   r.get(n, "motion_blur_samples", c.render.motion_blur_samples);
+  r.get(n, "anisotropic_samples", c.render.anisotropic_samples);
   r.get(n, "exposure_time_s", c.render.exposure_time_s);
   r.get(n, "exposure_variation", c.exposure_variation);
   r.get(n, "exposure_period_s", c.exposure_period_s);
@@ -185,7 +186,8 @@ void validate(const Reader& r, const SimConfig& c) {
                   c.motion.cruise_speed_m_s > 0 &&
                   c.outdoor_speed_m_s > 0 && c.motion.ramp_s > 0 && c.outdoor_ramp_s > 0 &&
                   c.motion.control_spacing_m > 0 && c.outdoor_control_spacing_m > 0 &&
-                  c.pose_spline.knot_spacing_s > 0 && c.render.motion_blur_samples >= 1 && c.preview_duration_s > 0 &&
+                  c.pose_spline.knot_spacing_s > 0 && c.render.motion_blur_samples >= 1 &&
+                  c.render.anisotropic_samples >= 1 && c.preview_duration_s > 0 &&
                   c.model_spacing_m > 0 && c.parallel_batch > 0 && c.faults.exposure_jump_gain > 0;
   if (!ok) r.fail("rates, sizes, speeds, spacings and counts must be positive");
   const CalibrationErrors& e = c.calibration_errors;
