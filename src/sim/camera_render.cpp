@@ -66,27 +66,30 @@ float anisotropic_albedo(const MaterialTextures& textures, const RayTable& rays,
   return static_cast<float>(sum / n);
 }
 
-// Radiance (0..1) of every pixel seen from one pose; z_C of the hit when depth is wanted. Every pixel's ray
-// is cast first, so that the anisotropic filter can read its neighbours' hits.
+// Radiance (0..1) of every pixel seen from one pose; z_C of the hit when depth is wanted. With anisotropic
+// filtering every pixel's ray is cast first, so that the filter can read its neighbours' hits.
 void trace(const World& world, const MaterialTextures& textures, const RayTable& rays, const PoseSample& pose,
            double max_range_m, int anisotropic_samples, float weight, cv::Mat& radiance, cv::Mat* depth) {
   std::vector<bool> emitter;
   for (const Material& m : world.materials()) emitter.push_back(m.base_grey >= kEmitterMinGrey);
   const auto direction_W = [&](std::size_t i) { return (pose.R_W_C * rays.dir_C[i]).cast<double>().normalized(); };
-  std::vector<std::optional<RayHit>> hits(static_cast<std::size_t>(rays.width) * rays.height);
-  tbb::parallel_for(0, rays.height, [&](int r) {
-    for (int c = 0; c < rays.width; ++c) {
-      const std::size_t i = static_cast<std::size_t>(r) * rays.width + c;
-      hits[i] = world.raycast(pose.origin_W, direction_W(i), max_range_m);
-    }
-  });
+  std::vector<std::optional<RayHit>> hits;
+  if (anisotropic_samples > 1) {
+    hits.resize(static_cast<std::size_t>(rays.width) * rays.height);
+    tbb::parallel_for(0, rays.height, [&](int r) {
+      for (int c = 0; c < rays.width; ++c) {
+        const std::size_t i = static_cast<std::size_t>(r) * rays.width + c;
+        hits[i] = world.raycast(pose.origin_W, direction_W(i), max_range_m);
+      }
+    });
+  }
   tbb::parallel_for(0, rays.height, [&](int r) {
     float* out = radiance.ptr<float>(r);
     float* z_out = depth ? depth->ptr<float>(r) : nullptr;
     for (int c = 0; c < rays.width; ++c) {
       const std::size_t i = static_cast<std::size_t>(r) * rays.width + c;
       const Vec3 d_W = direction_W(i);
-      const std::optional<RayHit>& hit = hits[i];
+      const std::optional<RayHit> hit = hits.empty() ? world.raycast(pose.origin_W, d_W, max_range_m) : hits[i];
       if (!hit) {
         out[c] += weight * static_cast<float>(kSkyRadiance * (0.9 + 0.1 * std::max(0.0, d_W.z())));
         if (z_out) z_out[c] = 0;
