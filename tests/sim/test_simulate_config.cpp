@@ -41,6 +41,7 @@ TEST(SimConfig, DefaultFileListsTheDefaults) {
   EXPECT_EQ(file.sensor_realism, def.sensor_realism);
   EXPECT_EQ(file.render.vignetting, def.render.vignetting);
   EXPECT_EQ(file.render.motion_blur_samples, def.render.motion_blur_samples);
+  EXPECT_EQ(file.render.anisotropic_samples, def.render.anisotropic_samples);
   EXPECT_EQ(file.lidar.returns.range_at_10pct_m, def.lidar.returns.range_at_10pct_m);
   EXPECT_EQ(file.lidar.returns.beam_divergence_rad, def.lidar.returns.beam_divergence_rad);
   EXPECT_EQ(file.lidar.returns.mixed_pixel_probability, def.lidar.returns.mixed_pixel_probability);
@@ -59,7 +60,9 @@ TEST(SimConfig, ReadsOverridesAndFaults) {
       "camera: {fx: 300, distortion_coeffs: [-0.28, 0.07, 0.0002, 0.00002]}\n"
       "imu: {rate_hz: 400}\n"
       "faults: {camera_blackouts: [[2.0, 3.5]], imu_gaps: [[1, 1.2], [4, 5]]}\n"
-      "calibration_errors: {lidar_time_offset_s: 0.01, camera_rotation_deg: 0}\n"));
+      "calibration_errors: {lidar_time_offset_s: 0.01, camera_rotation_deg: 0}\n"
+      "render: {anisotropic_samples: 8}\n"));
+  EXPECT_EQ(c.render.anisotropic_samples, 8);
   EXPECT_EQ(c.camera.fx, 300);
   EXPECT_EQ(c.camera.fy, 460);
   EXPECT_EQ(c.camera.distortion, DistortionModel::kRadTan);
@@ -99,6 +102,7 @@ TEST(SimConfig, RejectsBadInput) {
   EXPECT_THROW(load_sim_config(write_yaml("camera: {distortion_coeffs: [0.1]}\n")), InputError);
   EXPECT_THROW(load_sim_config(write_yaml("faults: {imu_gaps: [[3, 1]]}\n")), InputError);
   EXPECT_THROW(load_sim_config(write_yaml("imu: [1, 2\n")), InputError);
+  EXPECT_THROW(load_sim_config(write_yaml("render: {anisotropic_samples: 0}\n")), InputError);
 }
 
 TEST(SimConfig, RigLooksForwardWithTheBaseline) {
