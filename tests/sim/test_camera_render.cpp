@@ -190,16 +190,23 @@ TEST(CameraRender, NoiseGainAndDeterminism) {
   EXPECT_NEAR(cv::mean(render_image(world, cam, pose, 0, dim))[0], 0.5 * cv::mean(clean)[0], 1.0);
 }
 
+// The rendered image as floats, for ratios and gradients.
+cv::Mat render_float(const World& world, const CameraIntrinsics& cam, const std::function<SE3(TimeNs)>& pose,
+                     const RenderOptions& options) {
+  cv::Mat image;
+  render_image(world, cam, pose, 0, options).convertTo(image, CV_32F);
+  return image;
+}
+
 // Vignetting darkens the image towards its corners by the configured share of the cos^4 law.
 TEST(CameraRender, VignettingDarkensTheCornersByTheCosineLaw) {
   const World& world = highbay();
   const CameraIntrinsics cam = default_camera();
   const auto pose = fixed(route_camera_pose(world.route_W(), 0));
   RenderOptions o = noiseless();
-  cv::Mat flat, vignetted;
-  render_image(world, cam, pose, 0, o).convertTo(flat, CV_32F);
+  const cv::Mat flat = render_float(world, cam, pose, o);
   o.vignetting = 0.5;
-  render_image(world, cam, pose, 0, o).convertTo(vignetted, CV_32F);
+  const cv::Mat vignetted = render_float(world, cam, pose, o);
   // Pixel ratios where the flat image is bright enough for rounding not to matter.
   const auto ratio_at = [&](int r, int c) {
     const cv::Rect box(c - 4, r - 4, 9, 9);
@@ -245,10 +252,9 @@ TEST(CameraRender, AnisotropicFilteringKeepsGrazingSurfacesSharpAcross) {
   const CameraIntrinsics cam = default_camera();
   const auto pose = fixed(route_camera_pose(world.route_W(), 0));
   RenderOptions o = noiseless();
-  cv::Mat isotropic, anisotropic;
-  render_image(world, cam, pose, 0, o).convertTo(isotropic, CV_32F);
+  const cv::Mat isotropic = render_float(world, cam, pose, o);
   o.anisotropic_samples = 8;
-  render_image(world, cam, pose, 0, o).convertTo(anisotropic, CV_32F);
+  const cv::Mat anisotropic = render_float(world, cam, pose, o);
   // The floor ahead (bottom left of the image): its footprints are long in the image's vertical, so the
   // horizontal gradients show the filtering across (3.4 times the energy when written).
   const cv::Rect floor(0, 360, 400, 120);
