@@ -33,8 +33,9 @@ DescribedFeatures describe(const cv::Mat& image, std::vector<cv::Point2f>* corne
   return features;
 }
 
-// Both images after CLAHE (FrontendConfig::clahe_clip_limit).
+// Both images after CLAHE (FrontendConfig::clahe_clip_limit; the pair itself when off).
 StereoFrame equalized(const StereoFrame& frame, const FrontendConfig& config) {
+  if (config.clahe_clip_limit <= 0) return frame;
   const cv::Ptr<cv::CLAHE> clahe =
       cv::createCLAHE(config.clahe_clip_limit, cv::Size(config.clahe_tiles, config.clahe_tiles));
   StereoFrame out;
@@ -47,7 +48,7 @@ StereoFrame equalized(const StereoFrame& frame, const FrontendConfig& config) {
 }  // namespace
 
 Frontend::Frontend(const RigCalibration& calib, const FrontendConfig& config)
-    : config_(config), rig_(make_stereo_rig(calib)) {
+    : config_(config), rig_(make_stereo_rig(calib)), devignetting_(calib, config.vignetting_samples) {
   validate_frontend_config(config, "frontend config");
 }
 
@@ -59,11 +60,12 @@ FrontendOutput Frontend::process(const StereoFrame& frame) {
     throw InputError(source, "not after the previous pair (t_ns=" + std::to_string(prev_t_ns_) + ")");
   }
   stats_ = FrontendStats{};
-  const StereoFrame input = config_.clahe_clip_limit > 0 ? equalized(frame, config_) : frame;
+  StereoFrame devignetted = devignetting_.apply(frame);
+  StereoFrame input = equalized(devignetted, config_);
   ImagePyramid left = build_klt_pyramid(input.left, config_);
   ImagePyramid right = build_klt_pyramid(input.right, config_);
   std::vector<Track> tracks;
-  if (initialized_) tracks = track_previous(left, right);
+  if (initialized_) tracks = track_previous(left, right, devignetted);
   FrontendOutput output;
   output.t_ns = frame.t_ns;
   output.tracked = static_cast<int>(tracks.size());
@@ -75,6 +77,16 @@ FrontendOutput Frontend::process(const StereoFrame& frame) {
   output.matches.reserve(tracks.size());
   for (const Track& t : tracks) output.matches.push_back(t.match);
   tracks_ = std::move(tracks);
+  if (devignetting_.end_round_if_ready()) {
+    stats_.vignetting_fitted = true;
+    // The next pair is tracked from this one: both corrected alike.
+    devignetted = devignetting_.apply(frame);
+    input = equalized(devignetted, config_);
+    left = build_klt_pyramid(input.left, config_);
+    right = build_klt_pyramid(input.right, config_);
+  }
+  prev_devignetted_ = StereoFrame{};
+  if (devignetting_.collecting()) prev_devignetted_ = {frame.t_ns, devignetted.left.clone(), devignetted.right.clone()};
   prev_left_ = std::move(left);
   prev_right_ = std::move(right);
   prev_t_ns_ = frame.t_ns;
@@ -82,7 +94,8 @@ FrontendOutput Frontend::process(const StereoFrame& frame) {
   return output;
 }
 
-std::vector<Frontend::Track> Frontend::track_previous(const ImagePyramid& left, const ImagePyramid& right) {
+std::vector<Frontend::Track> Frontend::track_previous(const ImagePyramid& left, const ImagePyramid& right,
+                                                      const StereoFrame& devignetted) {
   std::vector<cv::Point2f> prev_left_px, left_px;
   prev_left_px.reserve(tracks_.size());
   for (const Track& t : tracks_) prev_left_px.push_back(to_cv(t.match.left_px));
@@ -99,6 +112,10 @@ std::vector<Frontend::Track> Frontend::track_previous(const ImagePyramid& left, 
   }
   std::vector<bool> right_ok;
   track_klt(prev_right_, right, prev_right_px, config_, &right_px, &right_ok);
+  if (devignetting_.collecting()) {
+    devignetting_.add_step(0, prev_devignetted_.left, devignetted.left, prev_left_px, left_px, left_ok);
+    devignetting_.add_step(1, prev_devignetted_.right, devignetted.right, prev_right_px, right_px, right_ok);
+  }
   stats_.klt_lost = static_cast<int>(tracks_.size() - left_kept.size());
   std::vector<Track> tracked;
   std::vector<Vec3> p_C0prev;

@@ -11,6 +11,7 @@
 #include "frontend/frontend_config.h"
 #include "frontend/klt_tracker.h"
 #include "frontend/stereo_match.h"
+#include "frontend/stereo_devignetting.h"
 
 namespace vilslam {
 
@@ -24,6 +25,7 @@ struct FrontendStats {
   SE3 T_C0cur_C0prev;         // that estimate (left camera, previous pair to this one) when motion_valid
   int corners_left = 0;       // Shi-Tomasi corners surviving elimination (0 when no extraction ran)
   int corners_right = 0;
+  bool vignetting_fitted = false;  // a round of the vignetting self-calibration ended on this pair
 };
 
 class Frontend {
@@ -36,6 +38,8 @@ class Frontend {
 
   const FrontendStats& last_stats() const { return stats_; }
   const StereoRig& rig() const { return rig_; }
+  // The fitted vignetting of camera 0 or 1 (FrontendConfig::vignetting_samples); nullptr until fitted.
+  const VignettingModel* vignetting(int camera) const { return devignetting_.model(camera); }
 
  private:
   struct Track {
@@ -43,7 +47,10 @@ class Frontend {
     Vec3 p_C0 = Vec3::Zero();  // triangulated in this pair's left camera frame
   };
 
-  std::vector<Track> track_previous(const ImagePyramid& left, const ImagePyramid& right);
+  // Also feeds the vignetting self-calibration with each image's KLT steps while it collects (devignetted =
+  // this pair as corrected so far, before CLAHE).
+  std::vector<Track> track_previous(const ImagePyramid& left, const ImagePyramid& right,
+                                    const StereoFrame& devignetted);
   void reject_temporal_outliers(std::vector<Track>* tracks, const std::vector<Vec3>& p_C0prev);
   std::vector<Track> extract_new(const StereoFrame& frame, const ImagePyramid& left, const ImagePyramid& right,
                                  const std::vector<Track>& existing);
@@ -54,6 +61,8 @@ class Frontend {
 
   FrontendConfig config_;
   StereoRig rig_;
+  StereoDevignetting devignetting_;
+  StereoFrame prev_devignetted_;  // kept while the vignetting self-calibration collects
   std::vector<Track> tracks_;
   ImagePyramid prev_left_, prev_right_;
   std::uint64_t next_track_id_ = 0;

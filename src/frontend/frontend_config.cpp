@@ -8,6 +8,7 @@ YamlFields frontend_yaml_fields(FrontendConfig& c) {
   return {
       yaml_value("clahe_clip_limit", c.clahe_clip_limit),
       yaml_value("clahe_tiles", c.clahe_tiles),
+      yaml_value("vignetting_samples", c.vignetting_samples),
       yaml_value("min_tracked_matches", c.min_tracked_matches),
       yaml_value("max_corners", c.max_corners),
       yaml_value("corner_quality", c.corner_quality),
@@ -43,6 +44,7 @@ void validate_frontend_config(const FrontendConfig& c, const std::string& source
   };
   require(c.clahe_clip_limit >= 0, "clahe_clip_limit must be >= 0 (0 = off)");
   require(c.clahe_tiles >= 1 && c.clahe_tiles <= 64, "clahe_tiles must be in [1, 64]");
+  require(c.vignetting_samples >= 0, "vignetting_samples must be >= 0 (0 = off)");
   require(c.min_tracked_matches >= 0, "min_tracked_matches must be >= 0");
   require(c.max_corners > 0, "max_corners must be > 0");
   require(c.corner_quality > 0 && c.corner_quality < 1, "corner_quality must be in (0, 1)");

@@ -13,6 +13,10 @@ struct FrontendConfig {
   // turns it on (3 in VINS-Mono); the image is cut into clahe_tiles x clahe_tiles tiles.
   double clahe_clip_limit = 0;
   int clahe_tiles = 8;
+  // Vignetting self-calibration (frontend/vignetting.h): the frontend fits each lens's radial falloff to the
+  // brightness of its KLT tracks, and once each camera has this many informative samples it divides every
+  // later image by the fitted falloff (before CLAHE). 0 turns it off.
+  int vignetting_samples = 0;
   // Extraction runs when fewer tracked stereo matches than this survive (and on the first pair).
   int min_tracked_matches = 150;
   // Shi-Tomasi (cv::goodFeaturesToTrack) per image.

@@ -9,6 +9,8 @@
 #include <utility>
 #include <variant>
 
+#include <spdlog/spdlog.h>
+
 #include "common/error.h"
 #include "frontend/frontend.h"
 #include "loop/map_file.h"
@@ -244,6 +246,7 @@ class FrontendSide {
       result_->frontend_ms.push_back(elapsed_ms(start));
       result_->matches_per_frame.push_back(static_cast<int>(out.matches.size()));
       if (online_offset_) update_offset(t_cam_ns, frame->t_ns);
+      if (frontend_.last_stats().vignetting_fitted) log_vignetting(t_cam_ns);
       vio_->push(TrackedFrame{std::move(*frame), std::move(out)});
     } else if (auto* sample = std::get_if<ImuSample>(&message)) {
       if (online_offset_) online_offset_->add_imu(*sample);
@@ -254,6 +257,16 @@ class FrontendSide {
   }
 
  private:
+  // The fitted falloff, as the brightness left in the image's corner (frontend/vignetting.h).
+  void log_vignetting(TimeNs t_cam_ns) const {
+    for (int camera = 0; camera < 2; ++camera) {
+      const VignettingModel& m = *frontend_.vignetting(camera);
+      spdlog::info("camera {} vignetting fitted at t_ns={}: pixel (0, 0) at {:.3f} of the centre's brightness "
+                   "(k = {:.4f} {:.4f} {:.4f})",
+                   camera, t_cam_ns, m.attenuation(0, 0), m.k.x(), m.k.y(), m.k.z());
+    }
+  }
+
   // time_offset.online: the frame's rotation goes to the estimator, and a new estimate moves the frames after it.
   void update_offset(TimeNs t_cam_ns, TimeNs t_imu_ns) {
     const FrontendStats& stats = frontend_.last_stats();

@@ -10,8 +10,8 @@ namespace {
 
 // Every field, in declaration order, as numbers (to compare whole configs).
 std::vector<double> as_numbers(const FrontendConfig& c) {
-  return {c.clahe_clip_limit, double(c.clahe_tiles), double(c.min_tracked_matches), double(c.max_corners),
-          c.corner_quality, c.corner_min_distance_px,
+  return {c.clahe_clip_limit, double(c.clahe_tiles), double(c.vignetting_samples), double(c.min_tracked_matches),
+          double(c.max_corners), c.corner_quality, c.corner_min_distance_px,
           double(c.corner_block_size), double(c.corner_subpix_half_window_px), c.elimination_distance_px,
           double(c.klt_window_px), double(c.klt_pyramid_levels), double(c.klt_max_iterations), c.klt_epsilon,
           c.klt_max_forward_backward_px, double(c.orb_patch_size), double(c.max_descriptor_distance), c.ratio_test,
@@ -32,7 +32,7 @@ TEST(FrontendConfig, ReadsEveryKey) {
   // config/run_default.yaml (tests/pipeline) checks the keys against the defaults; here every key
   // gets a value other than its default.
   const FrontendConfig c = read(
-      "clahe_clip_limit: 2.5\nclahe_tiles: 6\n"
+      "clahe_clip_limit: 2.5\nclahe_tiles: 6\nvignetting_samples: 3000\n"
       "min_tracked_matches: 100\nmax_corners: 123\ncorner_quality: 0.01\ncorner_min_distance_px: 6\n"
       "corner_block_size: 5\ncorner_subpix_half_window_px: 2\nelimination_distance_px: 5\nklt_window_px: 15\n"
       "klt_pyramid_levels: 2\nklt_max_iterations: 20\nklt_epsilon: 0.02\nklt_max_forward_backward_px: 0.5\n"
@@ -40,8 +40,8 @@ TEST(FrontendConfig, ReadsEveryKey) {
       "max_epipolar_distance_px: 1.5\nmin_depth_m: 0.5\nmax_depth_m: 30\nmax_stereo_refinement_px: 2\n"
       "max_stereo_reprojection_px: 1.0\nmax_temporal_reprojection_px: 2.5\npnp_min_points: 8\n"
       "pnp_ransac_iterations: 50\npnp_ransac_threshold_px: 1.5\nransac_seed: 7\n");
-  EXPECT_EQ(as_numbers(c), (std::vector<double>{2.5, 6, 100, 123, 0.01, 6, 5, 2, 5, 15, 2, 20, 0.02, 0.5, 25, 50, 0.6,
-                                                 0, 1.5, 0.5, 30, 2, 1.0, 2.5, 8, 50, 1.5, 7}));
+  EXPECT_EQ(as_numbers(c), (std::vector<double>{2.5, 6, 3000, 100, 123, 0.01, 6, 5, 2, 5, 15, 2, 20, 0.02, 0.5, 25,
+                                                 50, 0.6, 0, 1.5, 0.5, 30, 2, 1.0, 2.5, 8, 50, 1.5, 7}));
   FrontendConfig defaults;
   EXPECT_EQ(frontend_yaml_fields(defaults).size(), as_numbers(c).size());
 }
@@ -62,6 +62,7 @@ TEST(FrontendConfig, BadValuesThrowInputError) {
   EXPECT_THROW(read("min_depth_m: 5\nmax_depth_m: 2\n"), InputError);
   EXPECT_THROW(read("clahe_clip_limit: -1\n"), InputError);
   EXPECT_THROW(read("clahe_tiles: 0\n"), InputError);
+  EXPECT_THROW(read("vignetting_samples: -5\n"), InputError);
   EXPECT_THROW(read("- 1\n- 2\n"), InputError);
 }
 
