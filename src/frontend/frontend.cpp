@@ -77,7 +77,9 @@ FrontendOutput Frontend::process(const StereoFrame& frame) {
   output.matches.reserve(tracks.size());
   for (const Track& t : tracks) output.matches.push_back(t.match);
   tracks_ = std::move(tracks);
-  if (devignetting_.end_round_if_ready()) {
+  const StereoDevignetting::RoundEnd round_end = devignetting_.end_round_if_ready();
+  stats_.vignetting_rejected = round_end == StereoDevignetting::RoundEnd::kRejected;
+  if (round_end == StereoDevignetting::RoundEnd::kFitted) {
     stats_.vignetting_fitted = true;
     // The next pair is tracked from this one: both corrected alike.
     devignetted = devignetting_.apply(frame);

@@ -25,7 +25,8 @@ struct FrontendStats {
   SE3 T_C0cur_C0prev;         // that estimate (left camera, previous pair to this one) when motion_valid
   int corners_left = 0;       // Shi-Tomasi corners surviving elimination (0 when no extraction ran)
   int corners_right = 0;
-  bool vignetting_fitted = false;  // a round of the vignetting self-calibration ended on this pair
+  bool vignetting_fitted = false;    // a round of the vignetting self-calibration ended on this pair
+  bool vignetting_rejected = false;  // its fit was implausible and the self-calibration stopped
 };
 
 class Frontend {

@@ -20,24 +20,41 @@ void StereoDevignetting::add_step(int camera, const cv::Mat& prev, const cv::Mat
   estimators_.at(camera).add_step(prev, cur, prev_px, cur_px, tracked);
 }
 
-bool StereoDevignetting::end_round_if_ready() {
-  if (!collecting()) return false;
+StereoDevignetting::RoundEnd StereoDevignetting::end_round_if_ready() {
+  if (!collecting()) return RoundEnd::kNone;
   const bool ready = std::all_of(estimators_.begin(), estimators_.end(), [&](const VignettingEstimator& e) {
     return e.informative_samples() >= samples_per_round_;
   });
-  if (!ready) return false;
+  if (!ready) return RoundEnd::kNone;
   // What this round fits is the falloff left in the corrected images: the models multiply, so their k add.
-  std::vector<VignettingModel> fitted;
-  for (const VignettingEstimator& e : estimators_) fitted.push_back(e.solve());
-  if (models_.empty()) models_ = fitted;
-  else
-    for (std::size_t c = 0; c < models_.size(); ++c) models_[c].k += fitted[c].k;
-  gains_ = {devignetting_gain(models_[0], {calib_.cam0.width_px, calib_.cam0.height_px}),
-            devignetting_gain(models_[1], {calib_.cam1.width_px, calib_.cam1.height_px})};
-  ++rounds_done_;
+  std::vector<VignettingModel> models;
+  for (std::size_t c = 0; c < estimators_.size(); ++c) {
+    const std::optional<VignettingModel> fitted = estimators_[c].solve();
+    if (!fitted) {
+      estimators_.clear();
+      rejected_ = true;
+      return RoundEnd::kRejected;
+    }
+    models.push_back(*fitted);
+    if (!models_.empty()) models[c].k += models_[c].k;
+  }
   estimators_.clear();
+  const std::vector<cv::Mat> gains = {
+      devignetting_gain(models[0], {calib_.cam0.width_px, calib_.cam0.height_px}),
+      devignetting_gain(models[1], {calib_.cam1.width_px, calib_.cam1.height_px})};
+  for (const cv::Mat& gain : gains) {
+    double min_gain = 0, max_gain = 0;
+    cv::minMaxLoc(gain, &min_gain, &max_gain);
+    if (min_gain < 1 / kMaxAttenuation || max_gain > 1 / kMinAttenuation) {
+      rejected_ = true;
+      return RoundEnd::kRejected;
+    }
+  }
+  models_ = models;
+  gains_ = gains;
+  ++rounds_done_;
   if (!finished()) estimators_ = {VignettingEstimator(calib_.cam0), VignettingEstimator(calib_.cam1)};
-  return true;
+  return RoundEnd::kFitted;
 }
 
 const VignettingModel* StereoDevignetting::model(int camera) const {

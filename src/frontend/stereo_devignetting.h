@@ -29,19 +29,26 @@ class StereoDevignetting {
   // KLT steps of camera 0 or 1 between the previous and this corrected image (VignettingEstimator::add_step).
   void add_step(int camera, const cv::Mat& prev, const cv::Mat& cur, const std::vector<cv::Point2f>& prev_px,
                 const std::vector<cv::Point2f>& cur_px, const std::vector<bool>& tracked);
-  // Ends the round when both cameras have samples_per_round informative samples: true when the correction
-  // changed (the caller then corrects the current pair again).
-  bool end_round_if_ready();
+  enum class RoundEnd { kNone, kFitted, kRejected };
+  // Ends the round when both cameras have samples_per_round informative samples. kFitted: the correction
+  // changed (the caller then corrects the current pair again). kRejected: no fit (the samples do not constrain
+  // it), or one that would leave some pixel darker than kMinAttenuation or brighter than kMaxAttenuation times
+  // the centre, which no lens does (moving lights, a scene that is not static): the self-calibration stops, the
+  // rounds before stay.
+  RoundEnd end_round_if_ready();
+
+  static constexpr double kMinAttenuation = 0.2, kMaxAttenuation = 1.1;
 
   // The correction so far for camera 0 or 1; nullptr before the first round ends.
   const VignettingModel* model(int camera) const;
-  // True once the last round has ended.
-  bool finished() const { return rounds_done_ == kRounds; }
+  // True once the last round has ended or a fit was rejected.
+  bool finished() const { return rounds_done_ == kRounds || rejected_; }
 
  private:
   RigCalibration calib_;
   int samples_per_round_ = 0;
   int rounds_done_ = 0;
+  bool rejected_ = false;
   std::vector<VignettingEstimator> estimators_;  // of the running round, both cameras
   std::vector<VignettingModel> models_;
   std::vector<cv::Mat> gains_;

@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/error.h"
-
 namespace vilslam {
 namespace {
 
@@ -90,7 +88,7 @@ void VignettingEstimator::add_step(const cv::Mat& prev, const cv::Mat& cur, cons
   ++steps_;
 }
 
-VignettingModel VignettingEstimator::solve() const {
+std::optional<VignettingModel> VignettingEstimator::solve() const {
   VignettingModel model = pinhole_;
   std::vector<double> weight(samples_.size(), 1.0), abs_residual(samples_.size(), 0.0);
   for (int iteration = 0; iteration < kIterations; ++iteration) {
@@ -117,9 +115,7 @@ VignettingModel VignettingEstimator::solve() const {
       rhs += weight[i] * x * y;
     }
     const Eigen::LDLT<Eigen::Matrix3d> ldlt(normal);
-    if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || normal.trace() <= 0) {
-      throw InputError("vignetting self-calibration", "the tracks do not constrain the falloff (no radial motion)");
-    }
+    if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || normal.trace() <= 0) return std::nullopt;
     model.k = ldlt.solve(rhs);
     for (std::size_t i = 0; i < samples_.size(); ++i) {
       const Sums& s = per_step[samples_[i].step];

@@ -11,6 +11,7 @@
 // samples (weighted, with Huber weights against occlusions and glints).
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <vector>
 
 #include "common/calibration.h"
@@ -43,8 +44,8 @@ class VignettingEstimator {
   // Samples whose rho changed enough to say something about the falloff (|d rho| >= kMinRhoStep).
   int informative_samples() const { return informative_; }
 
-  // The robust least-squares fit over every sample so far.
-  VignettingModel solve() const;
+  // The robust least-squares fit over every sample so far; nullopt when they do not constrain the falloff.
+  std::optional<VignettingModel> solve() const;
 
   static constexpr double kMinRhoStep = 1e-3;
   static constexpr int kPatchPx = 21;  // side of the square patch whose weighted mean brightness is compared

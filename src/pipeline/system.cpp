@@ -247,6 +247,11 @@ class FrontendSide {
       result_->matches_per_frame.push_back(static_cast<int>(out.matches.size()));
       if (online_offset_) update_offset(t_cam_ns, frame->t_ns);
       if (frontend_.last_stats().vignetting_fitted) log_vignetting(t_cam_ns);
+      if (frontend_.last_stats().vignetting_rejected) {
+        spdlog::warn("vignetting self-calibration stopped at t_ns={}: its fit darkens or brightens the image's edge "
+                     "beyond any lens (a scene that is not static?); the images keep the correction before it",
+                     t_cam_ns);
+      }
       vio_->push(TrackedFrame{std::move(*frame), std::move(out)});
     } else if (auto* sample = std::get_if<ImuSample>(&message)) {
       if (online_offset_) online_offset_->add_imu(*sample);

@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <map>
 
-#include "common/error.h"
 #include "frontend/frontend.h"
+#include "frontend/stereo_devignetting.h"
 #include "frontend/vignetting.h"
 #include "synthetic_stereo.h"
 
@@ -44,31 +44,44 @@ struct PanningScene {
     return p;
   }();
   SE3 T_W_C(int k) const { return SE3(so3::exp(Vec3(0.012 * std::sin(0.2 * k), 0.018 * (k - 12), 0)), Vec3(0, 0, 0)); }
-  cv::Mat image(int k) const { return vignetted(test::render_plane(plane, cam, T_W_C(k)), cam, exposure(k)); }
+  cv::Mat image(int k, double amount = 0.5) const {
+    return vignetted(test::render_plane(plane, cam, T_W_C(k)), cam, exposure(k), amount);
+  }
 };
+
+// One frame step of the panning scene with exact correspondences: a grid of pixels of image k - 1 through the
+// plane into image k.
+struct ExactStep {
+  cv::Mat prev, cur;
+  std::vector<cv::Point2f> prev_px, cur_px;
+  std::vector<bool> tracked;
+};
+
+ExactStep exact_step(const PanningScene& scene, int k, double amount = 0.5) {
+  ExactStep step{scene.image(k - 1, amount), scene.image(k, amount), {}, {}, {}};
+  for (int v = 20; v < scene.cam.height_px - 20; v += 15) {
+    for (int u = 20; u < scene.cam.width_px - 20; u += 15) {
+      const Eigen::Vector2d xy((u - scene.cam.cx) / scene.cam.fx, (v - scene.cam.cy) / scene.cam.fy);
+      const Vec3 p_W = scene.T_W_C(k - 1) * scene.plane.intersect(scene.T_W_C(k - 1), xy);
+      const Vec3 p_C = scene.T_W_C(k).inverse() * p_W;
+      step.prev_px.emplace_back(u, v);
+      step.cur_px.emplace_back(scene.cam.fx * p_C.x() / p_C.z() + scene.cam.cx,
+                               scene.cam.fy * p_C.y() / p_C.z() + scene.cam.cy);
+      step.tracked.push_back(true);
+    }
+  }
+  return step;
+}
 
 TEST(Vignetting, SelfCalibrationRecoversTheFalloffUnderExposureChanges) {
   const PanningScene scene;
   VignettingEstimator estimator(scene.cam);
   for (int k = 1; k < 25; ++k) {
-    // Exact correspondences: a grid of pixels of image k - 1 through the plane into image k.
-    std::vector<cv::Point2f> prev_px, cur_px;
-    std::vector<bool> tracked;
-    for (int v = 20; v < scene.cam.height_px - 20; v += 15) {
-      for (int u = 20; u < scene.cam.width_px - 20; u += 15) {
-        const Eigen::Vector2d xy((u - scene.cam.cx) / scene.cam.fx, (v - scene.cam.cy) / scene.cam.fy);
-        const Vec3 p_W = scene.T_W_C(k - 1) * scene.plane.intersect(scene.T_W_C(k - 1), xy);
-        const Vec3 p_C = scene.T_W_C(k).inverse() * p_W;
-        prev_px.emplace_back(u, v);
-        cur_px.emplace_back(scene.cam.fx * p_C.x() / p_C.z() + scene.cam.cx,
-                            scene.cam.fy * p_C.y() / p_C.z() + scene.cam.cy);
-        tracked.push_back(true);
-      }
-    }
-    estimator.add_step(scene.image(k - 1), scene.image(k), prev_px, cur_px, tracked);
+    const ExactStep step = exact_step(scene, k);
+    estimator.add_step(step.prev, step.cur, step.prev_px, step.cur_px, step.tracked);
   }
   ASSERT_GT(estimator.informative_samples(), 5000);
-  const VignettingModel model = estimator.solve();
+  const VignettingModel model = estimator.solve().value();
   double worst = 0;
   for (int v = 0; v < scene.cam.height_px; v += 8) {
     for (int u = 0; u < scene.cam.width_px; u += 8) {
@@ -103,7 +116,38 @@ TEST(Vignetting, TracksWithoutRadialMotionAreRejected) {
   const std::vector<cv::Point2f> px = {{300, 200}, {400, 300}};
   estimator.add_step(scene.image(0), scene.image(0), px, px, {true, true});
   EXPECT_EQ(estimator.informative_samples(), 0);
-  EXPECT_THROW(estimator.solve(), InputError);
+  EXPECT_FALSE(estimator.solve().has_value());
+}
+
+// A lens brightening its edges (the same falloff with the opposite sign, 1.75 at the corners) is no lens: the
+// round's fit is rejected and nothing is corrected; the true falloff on the same steps is taken.
+TEST(Vignetting, ImplausibleFitStopsTheSelfCalibration) {
+  const PanningScene scene;
+  const RigCalibration calib = test::pinhole_stereo_rig();
+  for (const double amount : {-1.0, 0.5}) {
+    StereoDevignetting devignetting(calib, 2000);
+    StereoDevignetting::RoundEnd end = StereoDevignetting::RoundEnd::kNone;
+    for (int k = 1; k < 25 && end == StereoDevignetting::RoundEnd::kNone; ++k) {
+      const ExactStep step = exact_step(scene, k, amount);
+      for (int camera = 0; camera < 2; ++camera) {
+        devignetting.add_step(camera, step.prev, step.cur, step.prev_px, step.cur_px, step.tracked);
+      }
+      end = devignetting.end_round_if_ready();
+    }
+    if (amount < 0) {
+      EXPECT_EQ(end, StereoDevignetting::RoundEnd::kRejected);
+      EXPECT_EQ(devignetting.model(0), nullptr);
+      EXPECT_TRUE(devignetting.finished());
+      EXPECT_FALSE(devignetting.collecting());
+      const StereoFrame pair{1, scene.image(3, amount), scene.image(4, amount)};
+      EXPECT_EQ(devignetting.apply(pair).left.data, pair.left.data);  // untouched
+    } else {
+      EXPECT_EQ(end, StereoDevignetting::RoundEnd::kFitted);
+      ASSERT_NE(devignetting.model(0), nullptr);
+      EXPECT_NEAR(devignetting.model(0)->attenuation(0, 0), true_attenuation(calib.cam0, 0, 0), 0.01);
+      EXPECT_TRUE(devignetting.collecting());  // the next round
+    }
+  }
 }
 
 // The frontend on a vignetted stereo sequence: once it has fitted the falloff (3 rounds of 2000 samples,
