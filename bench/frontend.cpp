@@ -9,6 +9,7 @@
 #include "frontend/corner_extractor.h"
 #include "frontend/frontend.h"
 #include "frontend/klt_tracker.h"
+#include "frontend/vignetting.h"
 #include "io/dataset.h"
 
 namespace {
@@ -115,5 +116,42 @@ void BM_StageShiTomasiBothImages(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_StageShiTomasiBothImages)->Unit(benchmark::kMillisecond);
+
+// The vignetting self-calibration's costs (FrontendConfig::vignetting_samples, docs/frontend.md): once fitted,
+// dividing both images by the falloff (every pair); while collecting, the brightness samples of 200 tracks in
+// both images (the corners against themselves in the next pair).
+void BM_StageDevignetteBothImages(benchmark::State& state) {
+  const Pairs* pairs = euroc_pairs(state);
+  if (!pairs) return;
+  vilslam::VignettingModel model;
+  model.fx = pairs->calib.cam0.fx;
+  model.fy = pairs->calib.cam0.fy;
+  model.cx = pairs->calib.cam0.cx;
+  model.cy = pairs->calib.cam0.cy;
+  model.k = Eigen::Vector3d(-0.96, 0.77, -0.28);  // the simulator's falloff (vignetting 0.5)
+  const cv::Mat gain = vilslam::devignetting_gain(model, pairs->frames[1].left.size());
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(vilslam::devignette(pairs->frames[1].left, gain));
+    benchmark::DoNotOptimize(vilslam::devignette(pairs->frames[1].right, gain));
+  }
+}
+BENCHMARK(BM_StageDevignetteBothImages)->Unit(benchmark::kMillisecond);
+
+void BM_StageVignettingSamplesBothImages(benchmark::State& state) {
+  const Pairs* pairs = euroc_pairs(state);
+  if (!pairs) return;
+  const vilslam::FrontendConfig config;
+  std::vector<cv::Point2f> corners = vilslam::detect_corners(pairs->frames[0].left, config);
+  corners.resize(std::min<std::size_t>(corners.size(), 200));
+  const std::vector<bool> tracked(corners.size(), true);
+  for (auto _ : state) {
+    vilslam::VignettingEstimator estimator(pairs->calib.cam0);
+    for (int image = 0; image < 2; ++image) {
+      estimator.add_step(pairs->frames[0].left, pairs->frames[1].left, corners, corners, tracked);
+    }
+    benchmark::DoNotOptimize(estimator.informative_samples());
+  }
+}
+BENCHMARK(BM_StageVignettingSamplesBothImages)->Unit(benchmark::kMillisecond);
 
 }  // namespace
