@@ -248,9 +248,10 @@ class FrontendSide {
       if (online_offset_) update_offset(t_cam_ns, frame->t_ns);
       if (frontend_.last_stats().vignetting_fitted) log_vignetting(t_cam_ns);
       if (frontend_.last_stats().vignetting_rejected) {
-        spdlog::warn("vignetting self-calibration stopped at t_ns={}: its fit darkens or brightens the image's edge "
-                     "beyond any lens (a scene that is not static?); the images keep the correction before it",
-                     t_cam_ns);
+        spdlog::warn("vignetting self-calibration stopped at t_ns={}: no plausible fit (the tracks do not constrain it, "
+                     "or it leaves an edge darker than {} or brighter than {} times the centre: a scene that is not "
+                     "static?); the images keep the correction before it",
+                     t_cam_ns, StereoDevignetting::kMinAttenuation, StereoDevignetting::kMaxAttenuation);
       }
       vio_->push(TrackedFrame{std::move(*frame), std::move(out)});
     } else if (auto* sample = std::get_if<ImuSample>(&message)) {
