@@ -75,6 +75,13 @@ void BM_FrontendExtraction(benchmark::State& state) {
 }
 BENCHMARK(BM_FrontendExtraction)->Unit(benchmark::kMillisecond);
 
+// The first 200 Shi-Tomasi corners of the first left image (the tracks of the stage benchmarks).
+std::vector<cv::Point2f> first_corners(const Pairs& pairs, const vilslam::FrontendConfig& config) {
+  std::vector<cv::Point2f> corners = vilslam::detect_corners(pairs.frames[0].left, config);
+  corners.resize(std::min<std::size_t>(corners.size(), 200));
+  return corners;
+}
+
 // Stages, for the cost breakdown in docs/frontend.md.
 void BM_StagePyramidsBothImages(benchmark::State& state) {
   const Pairs* pairs = euroc_pairs(state);
@@ -94,8 +101,7 @@ void BM_StageKltBothImages(benchmark::State& state) {
   if (!pairs) return;
   vilslam::FrontendConfig config;
   config.klt_window_px = static_cast<int>(state.range(0));
-  std::vector<cv::Point2f> corners = vilslam::detect_corners(pairs->frames[0].left, config);
-  corners.resize(std::min<std::size_t>(corners.size(), 200));
+  const std::vector<cv::Point2f> corners = first_corners(*pairs, config);
   const vilslam::ImagePyramid prev = vilslam::build_klt_pyramid(pairs->frames[0].left, config);
   const vilslam::ImagePyramid cur = vilslam::build_klt_pyramid(pairs->frames[1].left, config);
   std::vector<cv::Point2f> tracked_px;
@@ -123,11 +129,7 @@ BENCHMARK(BM_StageShiTomasiBothImages)->Unit(benchmark::kMillisecond);
 void BM_StageDevignetteBothImages(benchmark::State& state) {
   const Pairs* pairs = euroc_pairs(state);
   if (!pairs) return;
-  vilslam::VignettingModel model;
-  model.fx = pairs->calib.cam0.fx;
-  model.fy = pairs->calib.cam0.fy;
-  model.cx = pairs->calib.cam0.cx;
-  model.cy = pairs->calib.cam0.cy;
+  vilslam::VignettingModel model = vilslam::VignettingModel::flat(pairs->calib.cam0);
   model.k = Eigen::Vector3d(-0.96, 0.77, -0.28);  // the simulator's falloff (vignetting 0.5)
   const cv::Mat gain = vilslam::devignetting_gain(model, pairs->frames[1].left.size());
   for (auto _ : state) {
@@ -141,8 +143,7 @@ void BM_StageVignettingSamplesBothImages(benchmark::State& state) {
   const Pairs* pairs = euroc_pairs(state);
   if (!pairs) return;
   const vilslam::FrontendConfig config;
-  std::vector<cv::Point2f> corners = vilslam::detect_corners(pairs->frames[0].left, config);
-  corners.resize(std::min<std::size_t>(corners.size(), 200));
+  const std::vector<cv::Point2f> corners = first_corners(*pairs, config);
   const std::vector<bool> tracked(corners.size(), true);
   for (auto _ : state) {
     vilslam::VignettingEstimator estimator(pairs->calib.cam0);

@@ -25,10 +25,21 @@ constexpr float kDarkestGrey = 4, kBrightestGrey = 251;
 
 }  // namespace
 
-double VignettingModel::attenuation(double u_px, double v_px) const {
-  const double x = (u_px - cx) / fx, y = (v_px - cy) / fy;
-  return std::exp(k.dot(powers(x * x + y * y)));
+VignettingModel VignettingModel::flat(const CameraIntrinsics& camera) {
+  VignettingModel model;
+  model.fx = camera.fx;
+  model.fy = camera.fy;
+  model.cx = camera.cx;
+  model.cy = camera.cy;
+  return model;
 }
+
+double VignettingModel::rho(double u_px, double v_px) const {
+  const double x = (u_px - cx) / fx, y = (v_px - cy) / fy;
+  return x * x + y * y;
+}
+
+double VignettingModel::attenuation(double u_px, double v_px) const { return std::exp(k.dot(powers(rho(u_px, v_px)))); }
 
 cv::Mat devignetting_gain(const VignettingModel& model, const cv::Size& size) {
   cv::Mat gain(size, CV_32F);
@@ -45,17 +56,7 @@ cv::Mat devignette(const cv::Mat& image, const cv::Mat& gain) {
   return corrected;
 }
 
-VignettingEstimator::VignettingEstimator(const CameraIntrinsics& camera) {
-  pinhole_.fx = camera.fx;
-  pinhole_.fy = camera.fy;
-  pinhole_.cx = camera.cx;
-  pinhole_.cy = camera.cy;
-}
-
-double VignettingEstimator::rho(const cv::Point2f& px) const {
-  const double x = (px.x - pinhole_.cx) / pinhole_.fx, y = (px.y - pinhole_.cy) / pinhole_.fy;
-  return x * x + y * y;
-}
+VignettingEstimator::VignettingEstimator(const CameraIntrinsics& camera) : pinhole_(VignettingModel::flat(camera)) {}
 
 bool VignettingEstimator::patch_mean(const cv::Mat& image, const cv::Point2f& px, double* mean) const {
   // A Gaussian weight (sigma a sixth of the side) rather than a plain mean: a track a little off its point
@@ -81,7 +82,7 @@ void VignettingEstimator::add_step(const cv::Mat& prev, const cv::Mat& cur, cons
     if (!tracked[i]) continue;
     double b_prev = 0, b_cur = 0;
     if (!patch_mean(prev, prev_px[i], &b_prev) || !patch_mean(cur, cur_px[i], &b_cur)) continue;
-    const double rho_prev = rho(prev_px[i]), rho_cur = rho(cur_px[i]);
+    const double rho_prev = pinhole_.rho(prev_px[i].x, prev_px[i].y), rho_cur = pinhole_.rho(cur_px[i].x, cur_px[i].y);
     samples_.push_back({steps_, powers(rho_cur) - powers(rho_prev), std::log(b_cur / b_prev)});
     informative_ += std::abs(rho_cur - rho_prev) >= kMinRhoStep;
   }

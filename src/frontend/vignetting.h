@@ -22,6 +22,11 @@ struct VignettingModel {
   double fx = 1, fy = 1, cx = 0, cy = 0;  // the camera's pinhole part (pixels)
   Eigen::Vector3d k = Eigen::Vector3d::Zero();
 
+  // No falloff yet, on this camera's pinhole.
+  static VignettingModel flat(const CameraIntrinsics& camera);
+
+  // Squared distance of pixel (u, v) from the principal point, in focal lengths.
+  double rho(double u_px, double v_px) const;
   // V at pixel (u, v): 1 at the principal point.
   double attenuation(double u_px, double v_px) const;
 };
@@ -56,7 +61,6 @@ class VignettingEstimator {
     Eigen::Vector3d df;     // f(rho_cur) - f(rho_prev)
     double log_ratio = 0;   // log(b_cur / b_prev)
   };
-  double rho(const cv::Point2f& px) const;
   bool patch_mean(const cv::Mat& image, const cv::Point2f& px, double* mean) const;
 
   VignettingModel pinhole_;

@@ -96,11 +96,8 @@ TEST(Vignetting, SelfCalibrationRecoversTheFalloffUnderExposureChanges) {
 TEST(Vignetting, DevignettingFlattensAUniformSurface) {
   const CameraIntrinsics cam = test::pinhole_752x480();
   const cv::Mat flat(cam.height_px, cam.width_px, CV_8U, cv::Scalar(180));
-  VignettingModel truth_fit;  // the cubic nearest to the simulator's falloff at 0.5 (least squares over rho in [0, 1])
-  truth_fit.fx = cam.fx;
-  truth_fit.fy = cam.fy;
-  truth_fit.cx = cam.cx;
-  truth_fit.cy = cam.cy;
+  // The cubic nearest to the simulator's falloff at 0.5 (least squares over rho in [0, 1]).
+  VignettingModel truth_fit = VignettingModel::flat(cam);
   truth_fit.k = Eigen::Vector3d(-0.9645, 0.7545, -0.2624);
   const cv::Mat corrected = devignette(vignetted(flat, cam, 1.0), devignetting_gain(truth_fit, flat.size()));
   double lo = 0, hi = 0;
