@@ -66,6 +66,9 @@ RegistrationResult LidarMapper::reregister_lidar_only(const FeatureScan& raw, Ti
 
 void LidarMapper::relocalize(const SE3& T_W_L_last, const std::vector<PosedFeatureScan>& scans) {
   if (!previous_) throw std::logic_error("LidarMapper::relocalize before the first sweep");
+  // The prior-aided poses move with the last one, so that their mean motion stays a motion.
+  const SE3 T_corrected_W = T_W_L_last * previous_->T_W_L.inverse();
+  for (auto& [t_ns, T_W_L] : aided_poses_) T_W_L = T_corrected_W * T_W_L;
   previous_->T_W_L = T_W_L_last;
   map_ = build_feature_map(config_.lidar.map, scans, T_W_L_last.translation());
 }
@@ -147,7 +150,18 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
   next.end_t_ns = end_t_ns;
   next.T_W_L = out.T_W_L;
   next.T_W_L_prior = T_W_L_prior_end;
-  if (previous_) {
+  if (has_prior) {
+    aided_poses_.emplace_back(end_t_ns, out.T_W_L);
+    if (aided_poses_.size() > kAidedPoses) aided_poses_.pop_front();
+  }
+  if (!has_prior && aided_poses_.size() >= 2) {
+    // A VIO outage (no prior after sweeps that had one): the constant-velocity model is the mean motion of the
+    // last prior-aided sweeps, and stays so. Learnt from the LiDAR-only sweeps, a degenerate corridor passes each
+    // registration's slip on to the next prediction, which its degenerate sweeps keep (docs/lidar.md, "VIO outages
+    // in a corridor").
+    next.motion = (aided_poses_.front().second.inverse() * aided_poses_.back().second).log();
+    next.motion_duration_ns = aided_poses_.back().first - aided_poses_.front().first;
+  } else if (previous_) {
     next.motion = (previous_->T_W_L.inverse() * out.T_W_L).log();
     next.motion_duration_ns = end_t_ns - previous_->end_t_ns;
   }

@@ -3,6 +3,7 @@
 // scan, dewarping to the scan end with the motion prior, the initial guess L*_{k+1} = L_k T_trans,
 // scan-to-map registration with Zhang et al. solution remapping, and insertion into the local feature map.
 // Without a prior it is the LOAM baseline: a constant-velocity motion model.
+#include <deque>
 #include <functional>
 #include <optional>
 #include <string>
@@ -96,6 +97,9 @@ class LidarMapper {
   SE3 T_I_L_;
   FeatureMap map_;
   std::optional<Previous> previous_;
+  // The last poses registered with a prior (end time, T_W_L): their mean motion predicts a VIO outage's sweeps.
+  static constexpr std::size_t kAidedPoses = 11;
+  std::deque<std::pair<TimeNs, SE3>> aided_poses_;
   std::optional<FeatureScan> first_raw_;
   FeatureScan last_features_;  // LiDAR-only: the first sweep's features until its motion is known
 };

@@ -7,6 +7,7 @@
 
 #include "common/error.h"
 #include "lidar/lidar_mapper.h"
+#include "lidar/mapping_status.h"
 #include "sim/lidar_sim.h"
 #include "sim/scan_degeneracy.h"
 #include "sim/sim_config.h"
@@ -247,6 +248,42 @@ TEST(LidarMapper, TiltPriorActsOnlyWithAPrior) {
   EXPECT_NE(off.poses.back().translation(), on.poses.back().translation());
   EXPECT_LT(on.max_translation_m, 0.05);
   EXPECT_LT(on.max_rotation_deg, 0.5);
+}
+
+// A sweep taken 0.5 m to the side of the motion (a glitch the registration follows: prediction_contradicted),
+// then the next sweep's constant-velocity prediction. In a VIO outage (a prior on the first 6 sweeps only) the
+// model is the mean motion of the prior-aided sweeps, whatever the LiDAR-only ones did; LiDAR-only from the start
+// it takes the glitch as motion, as LOAM does (docs/lidar.md, "VIO outages in a corridor").
+SE3 prediction_after_glitch(const Sequence& seq, int prior_sweeps, MappingStatus* glitch_status) {
+  constexpr int kGlitch = 9;
+  std::vector<LidarScan> scans = seq.scans;
+  const SE3 shift(Quat::Identity(), Vec3(0.0, 0.5, 0.0));
+  scans[kGlitch] = sim::simulate_sweep(world(sim::Scenario::kHighbay), sim::LidarSimConfig{}, scans[kGlitch].t_ns,
+                                       [&](TimeNs t) { return shift * seq.T_W_I(t) * T_I_L(); }, 100 + kGlitch);
+  LidarMapper mapper(LidarMapperConfig{}, T_I_L());
+  LidarMappingResult r;
+  for (int k = 0; k <= kGlitch + 1; ++k) {
+    r = mapper.process(scans[k], k < prior_sweeps ? seq.T_W_I : std::function<SE3(TimeNs)>{});
+    if (k == kGlitch) *glitch_status = mapping_status(r);
+  }
+  return r.T_prev_predicted;
+}
+
+TEST(LidarMapper, InAVioOutageTheMotionModelKeepsThePriorAidedMotion) {
+  const Sequence seq = simulate(sim::Scenario::kHighbay, 5.0, 11);
+  const SE3 truth = (seq.T_W_I(seq.scans[9].end_t_ns()) * T_I_L()).inverse() * seq.T_W_I(seq.scans[10].end_t_ns()) *
+                    T_I_L();
+  MappingStatus outage_status{}, lidar_only_status{};
+  const SE3 outage = prediction_after_glitch(seq, 6, &outage_status);
+  const SE3 lidar_only = prediction_after_glitch(seq, 0, &lidar_only_status);
+  const double outage_err_m = (outage.translation() - truth.translation()).norm();
+  const double lidar_only_err_m = (lidar_only.translation() - truth.translation()).norm();
+  std::cout << "prediction after a 0.5 m glitch: VIO outage " << outage_err_m << " m, LiDAR-only " << lidar_only_err_m
+            << " m off the true motion (" << truth.translation().norm() << " m)\n";
+  ASSERT_EQ(outage_status, MappingStatus::kPredictionContradicted);
+  ASSERT_EQ(lidar_only_status, MappingStatus::kPredictionContradicted);
+  EXPECT_LT(outage_err_m, 0.02);  // the mean motion of 0.5 s of prior-aided sweeps; the route speeds up a little
+  EXPECT_GT(lidar_only_err_m, 0.3);
 }
 
 TEST(LidarMapper, RejectsEmptyAndOutOfOrderScans) {
