@@ -47,10 +47,11 @@ struct LoopClosureConfig {
   // scatter eigenvalue, lidar::AssociationConfig::min_plane_spread_ratio), and the loss is tighter than
   // LiDAR mapping's. Measured in docs/loop.md ("ICP accuracy").
   double icp_min_plane_spread_ratio = 0.1;
-  // Planes through the nearest neighbour (lidar::AssociationConfig::plane_through_nearest) and the neighbours per
-  // fit: better loops in the tunnel, but off by the tuning rule (docs/loop.md, "Plane fits of single key scans").
-  bool icp_plane_through_nearest = false;
-  int icp_num_neighbors = 5;
+  // Planes through the nearest neighbour (lidar::AssociationConfig::plane_through_nearest), 7 neighbours per fit:
+  // a ring's points bulge off the chord of a curved wall, so the centroid's plane lies inside an arch; 10 leave a
+  // corridor's return two weak directions (docs/loop.md, "Plane fits of single key scans").
+  bool icp_plane_through_nearest = true;
+  int icp_num_neighbors = 7;
   double icp_loss_scale_m = 0.05;
   double icp_min_matched_fraction = 0.25;  // query features that found a line or plane in the map
   double icp_min_inlier_fraction = 0.5;   // matched features within the loss scale of their line or plane

@@ -42,7 +42,7 @@ TEST(LoopClosureConfig, DefaultsAreValidAndEveryFieldRoundTrips) {
   c.icp_min_eigenvalue_per_match = 0.02;
   c.icp_max_degenerate_directions = 0;
   c.icp_min_plane_spread_ratio = 0.2;
-  c.icp_plane_through_nearest = true;
+  c.icp_plane_through_nearest = false;
   c.icp_num_neighbors = 8;
   c.icp_loss_scale_m = 0.07;
   c.max_epnp_icp_translation_m = 0.25;
@@ -63,7 +63,7 @@ TEST(LoopClosureConfig, DefaultsAreValidAndEveryFieldRoundTrips) {
   EXPECT_FALSE(back.loop_covariance_from_estimates);
   EXPECT_EQ(back.icp_max_degenerate_directions, 0);
   EXPECT_EQ(back.icp_loss_scale_m, 0.07);
-  EXPECT_TRUE(back.icp_plane_through_nearest);
+  EXPECT_FALSE(back.icp_plane_through_nearest);
   EXPECT_EQ(back.icp_num_neighbors, 8);
 }
 
