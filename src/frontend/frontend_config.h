@@ -15,8 +15,9 @@ struct FrontendConfig {
   int clahe_tiles = 8;
   // Vignetting self-calibration (frontend/vignetting.h): the frontend fits each lens's radial falloff to the
   // brightness of its KLT tracks, and once each camera has this many informative samples it divides every
-  // later image by the fitted falloff (before CLAHE). 0 turns it off.
-  int vignetting_samples = 0;
+  // later image by the fitted falloff (before CLAHE). 0 turns it off. On by default since 2026-11-29: it passed
+  // a rule written before its runs on eight fresh tuning routes (docs/evaluation.md, "Fresh routes of every preset").
+  int vignetting_samples = 2000;
   // Extraction runs when fewer tracked stereo matches than this survive (and on the first pair).
   int min_tracked_matches = 150;
   // Shi-Tomasi (cv::goodFeaturesToTrack) per image.
