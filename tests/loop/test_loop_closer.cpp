@@ -330,7 +330,10 @@ TEST(LoopCloser, ParkedReturnInTheTunnelPlanesThroughTheNearestNeighbourKeepTheP
   const lidar::LidarConfig mapping = mapper_lidar_config();
   const auto icp_error = [&](bool through_nearest) {
     LoopClosureConfig config;
-    if (!through_nearest) config.icp_plane_through_nearest = false, config.icp_num_neighbors = 5;
+    if (!through_nearest) {
+      config.icp_plane_through_nearest = false;
+      config.icp_num_neighbors = 5;
+    }
     LoopCloser closer(config, mapping, tunnel.vocabulary);
     closer.add_and_detect(kA, poses);
     const std::vector<LoopCandidateRecord> records = closer.add_and_detect(kB, poses);
