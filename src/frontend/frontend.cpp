@@ -131,6 +131,10 @@ std::vector<Frontend::Track> Frontend::track_previous(const ImagePyramid& left, 
     t.match.left_px = to_eigen(left_px[i]);
     t.match.right_px = to_eigen(right_px[k]);
     ++t.match.age_frames;
+    if (config_.klt_anchor_half_px > 0 && !refine_anchored(left.front(), right.front(), &t)) {
+      ++stats_.anchor_rejected;
+      continue;
+    }
     if (!stereo_check(&t)) {
       ++stats_.stereo_rejected;
       continue;
@@ -194,6 +198,12 @@ std::vector<Frontend::Track> Frontend::extract_new(const StereoFrame& frame, con
       ++stats_.stereo_rejected;
       continue;
     }
+    if (config_.klt_anchor_half_px > 0 &&
+        (!make_anchor(frame.left, t.match.left_px, config_.klt_anchor_half_px, &t.left_anchor) ||
+         !make_anchor(frame.right, t.match.right_px, config_.klt_anchor_half_px, &t.right_anchor))) {
+      ++stats_.anchor_rejected;
+      continue;
+    }
     t.match.track_id = next_track_id_++;
     fresh.push_back(t);
   }
@@ -223,6 +233,21 @@ std::vector<Frontend::Track> Frontend::refine_right(const ImagePyramid& left, co
     refined.push_back(fresh[i]);
   }
   return refined;
+}
+
+bool Frontend::refine_anchored(const cv::Mat& left, const cv::Mat& right, Track* track) const {
+  const AnchorRefinementConfig config = anchor_refinement_config(config_);
+  PatchAnchor left_anchor = track->left_anchor, right_anchor = track->right_anchor;
+  Eigen::Vector2d left_px = track->match.left_px, right_px = track->match.right_px;
+  if (!refine_to_anchor(left, config, &left_px, &left_anchor) ||
+      !refine_to_anchor(right, config, &right_px, &right_anchor)) {
+    return false;
+  }
+  track->match.left_px = left_px;
+  track->match.right_px = right_px;
+  track->left_anchor = std::move(left_anchor);
+  track->right_anchor = std::move(right_anchor);
+  return true;
 }
 
 bool Frontend::stereo_check(Track* track) const {

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "common/yaml_config.h"
+#include "frontend/anchored_patch.h"
 
 namespace vilslam {
 
@@ -35,6 +36,12 @@ struct FrontendConfig {
   double klt_epsilon = 0.01;
   // Forward-backward check: a track survives when tracking back lands this close to its start.
   double klt_max_forward_backward_px = 1.0;
+  // Anchored tracks (frontend/anchored_patch.h): each KLT position is refined against the patch where the track
+  // began, under an affine warp with gain and offset, so the per-frame KLT bias does not add up along the track;
+  // a track whose refinement fails is ended. Half size of that patch in pixels; 0 turns it off (the default).
+  int klt_anchor_half_px = 0;
+  double klt_anchor_max_correction_px = 1.0;  // farthest the refinement may move the KLT position
+  double klt_anchor_min_correlation = 0.5;    // of the warped patch with the first one
   // ORB descriptors (cv::ORB::compute) on the surviving corners; corners nearer the border are dropped.
   int orb_patch_size = 31;
   // Brute-force stereo matching.
@@ -56,6 +63,9 @@ struct FrontendConfig {
   double pnp_ransac_threshold_px = 2.0;
   std::uint64_t ransac_seed = 1;
 };
+
+// The anchored-track refinement's settings of the config.
+AnchorRefinementConfig anchor_refinement_config(const FrontendConfig& config);
 
 // The YAML keys of the config (the field names), bound to c's fields: the `frontend:` section of a run
 // config (pipeline/run_config.h). Validate after reading.
