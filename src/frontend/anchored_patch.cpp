@@ -18,6 +18,26 @@ double sample(const cv::Mat& image, double x, double y) {
   return (1 - ay) * ((1 - ax) * row0[x0] + ax * row0[x0 + 1]) + ay * ((1 - ax) * row1[x0] + ax * row1[x0 + 1]);
 }
 
+// Bilinear intensity and gradient at (x, y): the image and its Scharr derivatives (CV_16SC2, 32 x the
+// gradient, as cv::buildOpticalFlowPyramid keeps them) share the weights.
+struct Sample {
+  double value, gx, gy;
+};
+Sample sample_with_gradient(const cv::Mat& image, const cv::Mat& derivatives, double x, double y) {
+  const int x0 = static_cast<int>(std::floor(x));
+  const int y0 = static_cast<int>(std::floor(y));
+  const double ax = x - x0, ay = y - y0;
+  const double w00 = (1 - ax) * (1 - ay), w01 = ax * (1 - ay), w10 = (1 - ax) * ay, w11 = ax * ay;
+  const uchar* i0 = image.ptr<uchar>(y0) + x0;
+  const uchar* i1 = image.ptr<uchar>(y0 + 1) + x0;
+  const short* d0 = derivatives.ptr<short>(y0) + 2 * x0;
+  const short* d1 = derivatives.ptr<short>(y0 + 1) + 2 * x0;
+  constexpr double kScharr = 1.0 / 32.0;
+  return {w00 * i0[0] + w01 * i0[1] + w10 * i1[0] + w11 * i1[1],
+          kScharr * (w00 * d0[0] + w01 * d0[2] + w10 * d1[0] + w11 * d1[2]),
+          kScharr * (w00 * d0[1] + w01 * d0[3] + w10 * d1[1] + w11 * d1[3])};
+}
+
 // True when every sample of the warped patch and its gradient stencil lies inside the image.
 bool warp_inside(const cv::Mat& image, const Eigen::Vector2d& c, const Eigen::Matrix2d& A, int h) {
   for (const double sx : {-1.0, 1.0}) {
@@ -65,34 +85,49 @@ bool make_anchor(const cv::Mat& image, const Eigen::Vector2d& px, int half_px, P
   return true;
 }
 
-bool refine_to_anchor(const cv::Mat& image, const AnchorRefinementConfig& config, Eigen::Vector2d* px,
-                      PatchAnchor* anchor) {
+bool refine_to_anchor(const cv::Mat& image, const cv::Mat& derivatives, const AnchorRefinementConfig& config,
+                      Eigen::Vector2d* px, PatchAnchor* anchor) {
+  using Vec8 = Eigen::Matrix<double, 8, 1>;
+  using Mat8 = Eigen::Matrix<double, 8, 8>;
   const int h = anchor->half_px;
   Eigen::Vector2d c = *px;
   Eigen::Matrix2d A = anchor->A;
   double gain = anchor->gain, bias = anchor->bias;
+  // A chord method: the normal matrix is formed only every kNormalEvery iterations, and the first iteration
+  // reuses the one of the track's previous step when there is one. The patch changes little from one image to
+  // the next, and the fixed point, where the current Jacobian is orthogonal to the residual, stays the same.
+  constexpr int kNormalEvery = 4;
+  Mat8 normal = anchor->normal;
+  bool have_normal = anchor->has_normal;
+  Eigen::LDLT<Mat8> ldlt;
+  if (have_normal) ldlt.compute(normal);
+  std::vector<double> warped(anchor->patch.size());  // the samples of the last iteration
   bool converged = false;
-  using Vec8 = Eigen::Matrix<double, 8, 1>;
   for (int iteration = 0; iteration < config.max_iterations && !converged; ++iteration) {
     if (!warp_inside(image, c, A, h)) return false;
-    Eigen::Matrix<double, 8, 8> H = Eigen::Matrix<double, 8, 8>::Zero();
+    const bool form_normal = iteration % kNormalEvery == 0 && (iteration > 0 || !have_normal);
+    Mat8 H = Mat8::Zero();
     Vec8 g = Vec8::Zero();
     std::size_t k = 0;
     for (int dy = -h; dy <= h; ++dy) {
       for (int dx = -h; dx <= h; ++dx, ++k) {
         const Eigen::Vector2d q = c + A * Eigen::Vector2d(dx, dy);
-        const double gx = 0.5 * (sample(image, q.x() + 1, q.y()) - sample(image, q.x() - 1, q.y()));
-        const double gy = 0.5 * (sample(image, q.x(), q.y() + 1) - sample(image, q.x(), q.y() - 1));
+        const Sample s = sample_with_gradient(image, derivatives, q.x(), q.y());
         const double T = anchor->patch[k];
-        const double r = sample(image, q.x(), q.y()) - (gain * T + bias);
+        warped[k] = s.value;
+        const double r = s.value - (gain * T + bias);
         // d r / d [c_x, c_y, A00, A01, A10, A11, gain, bias] of r = I(c + A x) - gain T - bias.
         Vec8 J;
-        J << gx, gy, gx * dx, gx * dy, gy * dx, gy * dy, -T, -1.0;
-        H.selfadjointView<Eigen::Lower>().rankUpdate(J);
+        J << s.gx, s.gy, s.gx * dx, s.gx * dy, s.gy * dx, s.gy * dy, -T, -1.0;
+        if (form_normal) H.noalias() += J * J.transpose();
         g += J * r;
       }
     }
-    const Eigen::LDLT<Eigen::Matrix<double, 8, 8>> ldlt(H.selfadjointView<Eigen::Lower>());
+    if (form_normal) {
+      normal = H;
+      have_normal = true;
+      ldlt.compute(normal);
+    }
     if (ldlt.info() != Eigen::Success) return false;
     const Vec8 step = -ldlt.solve(g);
     if (!step.allFinite()) return false;
@@ -103,24 +138,20 @@ bool refine_to_anchor(const cv::Mat& image, const AnchorRefinementConfig& config
     A(1, 1) += step(5);
     gain += step(6);
     bias += step(7);
+    // The position decides: in faint texture the affine part stays loose and may still move a little.
     converged = step.head<2>().norm() < 0.01;
   }
   if (!converged || !warp_inside(image, c, A, h) || (c - *px).norm() > config.max_correction_px) return false;
   const double det = A.determinant();
   if (!(det > 0) || std::sqrt(det) < config.min_scale || std::sqrt(det) > config.max_scale) return false;
-  std::vector<double> warped;
-  warped.reserve(anchor->patch.size());
-  for (int dy = -h; dy <= h; ++dy) {
-    for (int dx = -h; dx <= h; ++dx) {
-      const Eigen::Vector2d q = c + A * Eigen::Vector2d(dx, dy);
-      warped.push_back(sample(image, q.x(), q.y()));
-    }
-  }
+  // The last iteration's samples, less than 0.01 px from the final position.
   if (correlation(anchor->patch, warped) < config.min_correlation) return false;
   *px = c;
   anchor->A = A;
   anchor->gain = gain;
   anchor->bias = bias;
+  anchor->normal = normal;
+  anchor->has_normal = true;
   return true;
 }
 

@@ -17,6 +17,8 @@ struct PatchAnchor {
   int half_px = 0;                              // h
   Eigen::Matrix2d A = Eigen::Matrix2d::Identity();  // offset in the first image -> offset in the latest one
   double gain = 1.0, bias = 0.0;                // latest intensity = gain * first intensity + bias
+  Eigen::Matrix<double, 8, 8> normal;           // Gauss-Newton normal matrix of the last refinement
+  bool has_normal = false;                      // (none before the first)
 };
 
 struct AnchorRefinementConfig {
@@ -32,10 +34,11 @@ struct AnchorRefinementConfig {
 bool make_anchor(const cv::Mat& image, const Eigen::Vector2d& px, int half_px, PatchAnchor* anchor);
 
 // Gauss-Newton on the warp (position, A, gain, bias) from *px (the KLT position) and anchor->A: every sample
-// of the first patch at offset x against image(px + A x). On success *px and the anchor's warp are updated;
+// of the first patch at offset x against image(px + A x). derivatives: the image's Scharr derivatives as
+// cv::buildOpticalFlowPyramid keeps them beside each level (CV_16SC2; ImagePyramid element 1). On success *px and the anchor's warp are updated;
 // false (both unchanged) when it leaves the image, does not converge, moves more than max_correction_px,
 // correlates less than min_correlation or zooms beyond the bounds.
-bool refine_to_anchor(const cv::Mat& image, const AnchorRefinementConfig& config, Eigen::Vector2d* px,
+bool refine_to_anchor(const cv::Mat& image, const cv::Mat& derivatives, const AnchorRefinementConfig& config, Eigen::Vector2d* px,
                       PatchAnchor* anchor);
 
 }  // namespace vilslam

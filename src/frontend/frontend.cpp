@@ -131,7 +131,7 @@ std::vector<Frontend::Track> Frontend::track_previous(const ImagePyramid& left, 
     t.match.left_px = to_eigen(left_px[i]);
     t.match.right_px = to_eigen(right_px[k]);
     ++t.match.age_frames;
-    if (config_.klt_anchor_half_px > 0 && !refine_anchored(left.front(), right.front(), &t)) {
+    if (config_.klt_anchor_half_px > 0 && !refine_anchored(left, right, &t)) {
       ++stats_.anchor_rejected;
       continue;
     }
@@ -235,12 +235,13 @@ std::vector<Frontend::Track> Frontend::refine_right(const ImagePyramid& left, co
   return refined;
 }
 
-bool Frontend::refine_anchored(const cv::Mat& left, const cv::Mat& right, Track* track) const {
+bool Frontend::refine_anchored(const ImagePyramid& left, const ImagePyramid& right, Track* track) const {
   const AnchorRefinementConfig config = anchor_refinement_config(config_);
   PatchAnchor left_anchor = track->left_anchor, right_anchor = track->right_anchor;
   Eigen::Vector2d left_px = track->match.left_px, right_px = track->match.right_px;
-  if (!refine_to_anchor(left, config, &left_px, &left_anchor) ||
-      !refine_to_anchor(right, config, &right_px, &right_anchor)) {
+  // Level 0 of each pyramid and its derivatives (build_klt_pyramid keeps them).
+  if (!refine_to_anchor(left[0], left[1], config, &left_px, &left_anchor) ||
+      !refine_to_anchor(right[0], right[1], config, &right_px, &right_anchor)) {
     return false;
   }
   track->match.left_px = left_px;

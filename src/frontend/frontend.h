@@ -51,7 +51,7 @@ class Frontend {
     PatchAnchor left_anchor, right_anchor;  // the first appearances (FrontendConfig::klt_anchor_half_px > 0)
   };
   // Refines the track's two pixels against its anchors in these images; false when either fails.
-  bool refine_anchored(const cv::Mat& left, const cv::Mat& right, Track* track) const;
+  bool refine_anchored(const ImagePyramid& left, const ImagePyramid& right, Track* track) const;
 
   // Also feeds the vignetting self-calibration with each image's KLT steps while it collects (devignetted =
   // this pair as corrected so far, before CLAHE).
