@@ -132,13 +132,8 @@ std::vector<Frontend::Track> Frontend::track_previous(const ImagePyramid& left, 
     t.match.right_px = to_eigen(right_px[k]);
     ++t.match.age_frames;
     if (config_.klt_anchor_half_px > 0 && !refine_anchored(left, right, &t)) {
-      // The KLT position stands, and the track starts afresh from it; only a track too near the border ends.
-      ++stats_.anchor_reset;
-      if (!make_anchor(left[0], t.match.left_px, config_.klt_anchor_half_px, &t.left_anchor) ||
-          !make_anchor(right[0], t.match.right_px, config_.klt_anchor_half_px, &t.right_anchor)) {
-        ++stats_.anchor_rejected;
-        continue;
-      }
+      ++stats_.anchor_rejected;
+      continue;
     }
     if (!stereo_check(&t)) {
       ++stats_.stereo_rejected;

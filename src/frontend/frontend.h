@@ -22,8 +22,7 @@ struct FrontendStats {
   int stereo_rejected = 0;    // tracked or new matches over the stereo reprojection threshold
   int refine_rejected = 0;    // new matches whose left -> right KLT refinement failed or moved too far
   int temporal_rejected = 0;  // tracked matches inconsistent with the frame-to-frame motion
-  int anchor_reset = 0;       // tracked matches whose anchored refinement failed: anchored afresh at the KLT pixels
-  int anchor_rejected = 0;    // matches too near the border for an anchor patch (klt_anchor_half_px)
+  int anchor_rejected = 0;    // tracked or new matches whose anchored refinement failed (klt_anchor_half_px)
   bool motion_valid = false;  // the PnP motion estimate was available for the temporal check
   SE3 T_C0cur_C0prev;         // that estimate (left camera, previous pair to this one) when motion_valid
   int corners_left = 0;       // Shi-Tomasi corners surviving elimination (0 when no extraction ran)

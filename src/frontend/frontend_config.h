@@ -38,10 +38,9 @@ struct FrontendConfig {
   double klt_max_forward_backward_px = 1.0;
   // Anchored tracks (frontend/anchored_patch.h): each KLT position is refined against the patch where the track
   // began, under an affine warp with gain and offset, so the per-frame KLT bias does not add up along the track;
-  // where the refinement fails the KLT position stands and the track is anchored afresh there. Half size of that
-  // patch in pixels; 0 turns it off (the default; docs/frontend.md, "Anchored tracks").
+  // a track whose refinement fails is ended. Half size of that patch in pixels; 0 turns it off (the default).
   int klt_anchor_half_px = 0;
-  double klt_anchor_max_correction_px = 0.3;  // farthest the refinement may move the KLT position
+  double klt_anchor_max_correction_px = 1.0;  // farthest the refinement may move the KLT position
   double klt_anchor_min_correlation = 0.5;    // of the warped patch with the first one
   // ORB descriptors (cv::ORB::compute) on the surviving corners; corners nearer the border are dropped.
   int orb_patch_size = 31;
