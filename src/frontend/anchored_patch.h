@@ -23,7 +23,7 @@ struct PatchAnchor {
 
 struct AnchorRefinementConfig {
   int max_iterations = 30;         // 10 left 8 % of the steps unconverged on the realistic tunnel, 30 1 %
-  double max_correction_px = 1.0;  // farther from the KLT position than this: the track is given up
+  double max_correction_px = 0.3;  // farther from the KLT position than this: the track is given up
   // Normalized correlation of the warped patch with the first one. The tunnel's faint concrete under sensor
   // noise correlates at 0.5-0.8; 0.8 ended 15 % of the steps there and starved the VIO of tracks.
   double min_correlation = 0.5;

@@ -38,9 +38,11 @@ struct FrontendConfig {
   double klt_max_forward_backward_px = 1.0;
   // Anchored tracks (frontend/anchored_patch.h): each KLT position is refined against the patch where the track
   // began, under an affine warp with gain and offset, so the per-frame KLT bias does not add up along the track;
-  // a track whose refinement fails is ended. Half size of that patch in pixels; 0 turns it off (the default).
+  // a track whose refinement fails is ended. Half size of that patch in pixels; 0 turns it off (the default:
+  // better in the tunnel, worse in plain corridors; docs/frontend.md, "Anchored tracks").
   int klt_anchor_half_px = 0;
-  double klt_anchor_max_correction_px = 1.0;  // farthest the refinement may move the KLT position
+  // Farthest the refinement may move the KLT position. 1 px let wrong fits through outdoors (docs/frontend.md).
+  double klt_anchor_max_correction_px = 0.3;
   double klt_anchor_min_correlation = 0.5;    // of the warped patch with the first one
   // ORB descriptors (cv::ORB::compute) on the surviving corners; corners nearer the border are dropped.
   int orb_patch_size = 31;

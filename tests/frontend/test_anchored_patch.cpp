@@ -44,6 +44,9 @@ ZoomTracks track_zoom(bool anchored) {
     anchors.push_back(anchor);
   }
   cur = start;
+  // The brightness step throws KLT further than the default 0.3 px from where the anchor is.
+  AnchorRefinementConfig refinement;
+  refinement.max_correction_px = 1.0;
   std::vector<bool> alive(start.size(), true);
   cv::Mat prev = first;
   double scale = 1.0;
@@ -58,7 +61,7 @@ ZoomTracks track_zoom(bool anchored) {
       alive[i] = alive[i] && tracked[i];
       if (!alive[i]) continue;
       Eigen::Vector2d p(next[i].x, next[i].y);
-      if (anchored) alive[i] = refine_to_anchor(image, pyramid[1], AnchorRefinementConfig{}, &p, &anchors[i]);
+      if (anchored) alive[i] = refine_to_anchor(image, pyramid[1], refinement, &p, &anchors[i]);
       cur[i] = cv::Point2f(static_cast<float>(p.x()), static_cast<float>(p.y()));
     }
     prev = image;
