@@ -35,10 +35,10 @@ bool make_anchor(const cv::Mat& image, const Eigen::Vector2d& px, int half_px, P
 
 // Gauss-Newton on the warp (position, A, gain, bias) from *px (the KLT position) and anchor->A: every sample
 // of the first patch at offset x against image(px + A x). derivatives: the image's Scharr derivatives as
-// cv::buildOpticalFlowPyramid keeps them beside each level (CV_16SC2; ImagePyramid element 1). On success *px and the anchor's warp are updated;
-// false (both unchanged) when it leaves the image, does not converge, moves more than max_correction_px,
-// correlates less than min_correlation or zooms beyond the bounds.
-bool refine_to_anchor(const cv::Mat& image, const cv::Mat& derivatives, const AnchorRefinementConfig& config, Eigen::Vector2d* px,
-                      PatchAnchor* anchor);
+// cv::buildOpticalFlowPyramid keeps them beside each level (CV_16SC2; ImagePyramid element 1). On success *px
+// and the anchor's warp are updated; false (both unchanged) when it leaves the image, does not converge, moves
+// more than max_correction_px, correlates less than min_correlation or zooms beyond the bounds.
+bool refine_to_anchor(const cv::Mat& image, const cv::Mat& derivatives, const AnchorRefinementConfig& config,
+                      Eigen::Vector2d* px, PatchAnchor* anchor);
 
 }  // namespace vilslam

@@ -163,7 +163,8 @@ TEST(Frontend, AnchoredTracksDriftLessThanFrameToFrameKlt) {
   int plain_resets = 0, anchored_resets = 0;
   const double plain = mean_drift_px(0, &plain_resets);
   const double anchored = mean_drift_px(7, &anchored_resets);
-  std::printf("mean drift of the 12-pair tracks: frame-to-frame KLT %.3f px, anchored %.3f px (%d tracks ended by the anchoring)\n",
+  std::printf("mean drift of the 12-pair tracks: frame-to-frame KLT %.3f px, anchored %.3f px (%d tracks ended "
+              "by the anchoring)\n",
               plain, anchored, anchored_resets);
   EXPECT_EQ(plain_resets, 0);
   EXPECT_LT(anchored, 0.8 * plain) << "plain " << plain << " px, anchored " << anchored << " px, "
