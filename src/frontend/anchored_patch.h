@@ -17,8 +17,9 @@ struct PatchAnchor {
   int half_px = 0;                              // h
   Eigen::Matrix2d A = Eigen::Matrix2d::Identity();  // offset in the first image -> offset in the latest one
   double gain = 1.0, bias = 0.0;                // latest intensity = gain * first intensity + bias
-  Eigen::Matrix<double, 8, 8> normal;           // Gauss-Newton normal matrix of the last refinement
-  bool has_normal = false;                      // (none before the first)
+  // The Gauss-Newton normal matrix of the last refinement; has_normal is false before the first.
+  Eigen::Matrix<double, 8, 8> normal = Eigen::Matrix<double, 8, 8>::Zero();
+  bool has_normal = false;
 };
 
 struct AnchorRefinementConfig {
