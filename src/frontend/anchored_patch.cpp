@@ -38,7 +38,7 @@ Sample sample_with_gradient(const cv::Mat& image, const cv::Mat& derivatives, do
           kScharr * (w00 * d0[1] + w01 * d0[3] + w10 * d1[1] + w11 * d1[3])};
 }
 
-// True when every sample of the warped patch and its gradient stencil lies inside the image.
+// True when every sample of the warped patch (and its bilinear neighbours) lies inside the image.
 bool warp_inside(const cv::Mat& image, const Eigen::Vector2d& c, const Eigen::Matrix2d& A, int h) {
   for (const double sx : {-1.0, 1.0}) {
     for (const double sy : {-1.0, 1.0}) {

@@ -237,18 +237,10 @@ std::vector<Frontend::Track> Frontend::refine_right(const ImagePyramid& left, co
 
 bool Frontend::refine_anchored(const ImagePyramid& left, const ImagePyramid& right, Track* track) const {
   const AnchorRefinementConfig config = anchor_refinement_config(config_);
-  PatchAnchor left_anchor = track->left_anchor, right_anchor = track->right_anchor;
-  Eigen::Vector2d left_px = track->match.left_px, right_px = track->match.right_px;
+  // In place: a track whose refinement fails is dropped by the caller, whatever half of it was updated.
   // Level 0 of each pyramid and its derivatives (build_klt_pyramid keeps them).
-  if (!refine_to_anchor(left[0], left[1], config, &left_px, &left_anchor) ||
-      !refine_to_anchor(right[0], right[1], config, &right_px, &right_anchor)) {
-    return false;
-  }
-  track->match.left_px = left_px;
-  track->match.right_px = right_px;
-  track->left_anchor = std::move(left_anchor);
-  track->right_anchor = std::move(right_anchor);
-  return true;
+  return refine_to_anchor(left[0], left[1], config, &track->match.left_px, &track->left_anchor) &&
+         refine_to_anchor(right[0], right[1], config, &track->match.right_px, &track->right_anchor);
 }
 
 bool Frontend::stereo_check(Track* track) const {

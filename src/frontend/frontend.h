@@ -50,7 +50,8 @@ class Frontend {
     Vec3 p_C0 = Vec3::Zero();  // triangulated in this pair's left camera frame
     PatchAnchor left_anchor, right_anchor;  // the first appearances (FrontendConfig::klt_anchor_half_px > 0)
   };
-  // Refines the track's two pixels against its anchors in these images; false when either fails.
+  // Refines the track's two pixels against its anchors in these images; false when either fails (the track is
+  // then partly updated and must be dropped).
   bool refine_anchored(const ImagePyramid& left, const ImagePyramid& right, Track* track) const;
 
   // Also feeds the vignetting self-calibration with each image's KLT steps while it collects (devignetted =
