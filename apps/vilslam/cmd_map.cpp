@@ -24,6 +24,7 @@ struct Options {
   map::MapBuilderConfig config;
   unsigned min_hits = 1;
   bool no_dewarp = false;
+  bool keep_mixed_pixels = false;
   bool also_pcd = false;
   std::optional<double> start_s, end_s;  // window, seconds after the first pose
 };
@@ -52,6 +53,11 @@ vilslam::cli::Command reg("map", "Dense map: the dataset's sweeps dewarped and s
   app.add_option("--min-range", o->config.min_range_m, "Drop returns closer than this, m")->capture_default_str();
   app.add_option("--max-range", o->config.max_range_m, "Drop returns farther than this, m")->capture_default_str();
   app.add_flag("--no-dewarp", o->no_dewarp, "Do not dewarp sweeps (every point takes the sweep-end pose)");
+  app.add_flag("--keep-mixed-pixels", o->keep_mixed_pixels,
+               "Keep mixed pixels (returns between a near and a far surface at a depth edge; docs/map.md)");
+  app.add_option("--mixed-gap-ratio", o->config.mixed_pixels.min_gap_ratio,
+                 "A mixed pixel's range differs from both ring neighbours' by more than this fraction of it")
+      ->capture_default_str();
   app.add_option("--motion", o->motion_path,
                  "Continuous LiDAR trajectory (TUM, e.g. lidar.tum) for the motion within each sweep; --poses then "
                  "only places each sweep's end (use with lidar_global.tum, whose loop corrections jump)");
@@ -64,6 +70,7 @@ vilslam::cli::Command reg("map", "Dense map: the dataset's sweeps dewarped and s
     const Trajectory T_W_L = read_trajectory(o->poses_path, TrajectoryFormat::kTum);
     if (T_W_L.empty()) throw InputError(o->poses_path, "no poses");
     o->config.dewarp = !o->no_dewarp;
+    o->config.drop_mixed_pixels = !o->keep_mixed_pixels;
     if (!o->motion_path.empty()) o->config.motion = read_trajectory(o->motion_path, TrajectoryFormat::kTum);
     set_window(*o, T_W_L.front().t_ns, &o->config);
     const map::MapBuildResult built = [&] {
@@ -81,7 +88,8 @@ vilslam::cli::Command reg("map", "Dense map: the dataset's sweeps dewarped and s
       std::printf(", %zu outside the window (sweep ends from %.3f to before %.3f s after the first pose)",
                   s.sweeps_outside_window, o->start_s.value_or(-INFINITY), o->end_s.value_or(INFINITY));
     std::printf("\n");
-    std::printf("points: %zu inserted, %zu out of range\n", s.points_inserted, s.points_out_of_range);
+    std::printf("points: %zu inserted, %zu out of range, %zu mixed pixels dropped\n", s.points_inserted,
+                s.points_out_of_range, s.points_mixed);
     std::printf("voxels: %zu of %.4f m, %zu written (min hits %u), map memory %.1f MB\n", built.map.num_voxels(),
                 built.map.voxel_size_m(), cloud.size(), o->min_hits, built.map.memory_bytes() / 1e6);
     return 0;

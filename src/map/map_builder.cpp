@@ -20,6 +20,9 @@ void check_config(const MapBuilderConfig& c) {
     throw std::invalid_argument("range filter needs 0 <= min_range_m < max_range_m");
   }
   if (!(c.max_pose_gap_s > 0.0)) throw std::invalid_argument("max_pose_gap_s must be positive");
+  if (!(c.mixed_pixels.min_gap_ratio > 0.0) || !(c.mixed_pixels.max_step_ratio >= 1.0)) {
+    throw std::invalid_argument("mixed pixels need min_gap_ratio > 0 and max_step_ratio >= 1");
+  }
   if (c.window_start_ns >= c.window_end_ns) throw std::invalid_argument("time window is empty (start >= end)");
 }
 
@@ -65,21 +68,27 @@ std::string span_text(const Trajectory& T_W_L) {
   return buf;
 }
 
-// The sweep's points in W that pass the range filter (range of the raw return).
+// The sweep's points in W that pass the range filter (range of the raw return) and are no mixed pixels.
 std::vector<Eigen::Vector3f> sweep_in_world(const LidarScan& raw, const Trajectory& T_W_L,
-                                            const MapBuilderConfig& config, std::size_t& out_of_range) {
+                                            const MapBuilderConfig& config, MapBuildStats& stats) {
   // Dewarping uses only the motion relative to the sweep's end, so any continuous trajectory serves.
   const Trajectory& motion = config.motion.empty() ? T_W_L : config.motion;
   const auto motion_at = [&motion](TimeNs t_ns) { return interpolated(motion, t_ns); };
   const LidarScan end_frame = config.dewarp ? lidar::dewarp(raw, motion_at) : raw;
   const SE3 T_W_end = interpolated(T_W_L, raw.end_t_ns());
+  const std::vector<bool> mixed =
+      config.drop_mixed_pixels ? lidar::mixed_pixels(raw, config.mixed_pixels) : std::vector<bool>(raw.points.size());
   std::vector<Eigen::Vector3f> points_W;
   points_W.reserve(raw.points.size());
   for (std::size_t i = 0; i < raw.points.size(); ++i) {
     const LidarPoint& r = raw.points[i];
     const double range_m = std::sqrt(double(r.x) * r.x + double(r.y) * r.y + double(r.z) * r.z);
     if (range_m < config.min_range_m || range_m > config.max_range_m) {
-      ++out_of_range;
+      ++stats.points_out_of_range;
+      continue;
+    }
+    if (mixed[i]) {
+      ++stats.points_mixed;
       continue;
     }
     const LidarPoint& p = end_frame.points[i];
@@ -122,7 +131,7 @@ MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory
       ++result.stats.sweeps_outside_window;
       continue;
     }
-    const std::vector<Eigen::Vector3f> points_W = sweep_in_world(scan, T_W_L, config, result.stats.points_out_of_range);
+    const std::vector<Eigen::Vector3f> points_W = sweep_in_world(scan, T_W_L, config, result.stats);
     result.stats.points_inserted += result.map.insert(points_W);
     ++result.stats.sweeps_used;
   }

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "common/types.h"
+#include "lidar/mixed_pixels.h"
 #include "map/dense_map.h"
 
 namespace vilslam::map {
@@ -18,6 +19,9 @@ struct MapBuilderConfig {
   double max_range_m = 50.0;    // and farther ones (pose errors grow with range)
   double max_pose_gap_s = 0.25; // a sweep needs poses no farther apart than this over its whole span
   bool dewarp = true;           // false: every point takes the sweep-end pose (for comparison)
+  // Mixed pixels (lidar/mixed_pixels.h) lie on no surface; sweeps with rings drop them unless this is false.
+  bool drop_mixed_pixels = true;
+  lidar::MixedPixelConfig mixed_pixels;
   // Optional continuous trajectory (e.g. the odometry lidar.tum) for the motion within each sweep; the poses
   // then only place each sweep's end. Poses published with loop corrections (lidar_global.tum) jump where a
   // correction arrived, and dewarping across that jump would smear the sweep over it.
@@ -34,6 +38,7 @@ struct MapBuildStats {
   std::size_t sweeps_outside_window = 0;  // covered by the poses, but not ending in the time window
   std::size_t points_inserted = 0;
   std::size_t points_out_of_range = 0;
+  std::size_t points_mixed = 0;       // dropped as mixed pixels
 };
 
 struct MapBuildResult {

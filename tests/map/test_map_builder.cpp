@@ -224,6 +224,21 @@ TEST_F(MapBuilderHighbay, RangeFilterAndBadInput) {
   MapBuilderConfig bad;
   bad.voxel_size_m = std::nan("");
   EXPECT_THROW(build_dense_map(dataset_, T_W_L_, bad), std::invalid_argument);
+  MapBuilderConfig bad_mixed;
+  bad_mixed.mixed_pixels.min_gap_ratio = 0.0;
+  EXPECT_THROW(build_dense_map(dataset_, T_W_L_, bad_mixed), std::invalid_argument);
+}
+
+// Every return is either inserted or dropped as a mixed pixel (lidar/mixed_pixels.h); keeping them inserts all.
+TEST_F(MapBuilderHighbay, MixedPixelsAreCountedAndLeftOut) {
+  const MapBuildResult dropped = build_dense_map(dataset_, T_W_L_, MapBuilderConfig{});
+  MapBuilderConfig keep;
+  keep.drop_mixed_pixels = false;
+  const MapBuildResult kept = build_dense_map(dataset_, T_W_L_, keep);
+  EXPECT_GT(dropped.stats.points_mixed, 0u);  // ideal sensors: returns grazing a surface only
+  EXPECT_LT(dropped.stats.points_mixed, kept.stats.points_inserted / 50);
+  EXPECT_EQ(kept.stats.points_mixed, 0u);
+  EXPECT_EQ(dropped.stats.points_inserted + dropped.stats.points_mixed, kept.stats.points_inserted);
 }
 
 }  // namespace

@@ -1,0 +1,58 @@
+#include "lidar/mixed_pixels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "lidar/ring_assignment.h"
+
+namespace vilslam::lidar {
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * M_PI;
+
+double range_of(const LidarPoint& p) { return std::sqrt(double(p.x) * p.x + double(p.y) * p.y + double(p.z) * p.z); }
+
+double azimuth_of(const LidarPoint& p) { return std::atan2(double(p.y), double(p.x)); }
+
+// Azimuth step from point a to the next point b of a ring sorted by azimuth (the last to the first wraps).
+double azimuth_step(const LidarPoint& a, const LidarPoint& b) {
+  const double step = azimuth_of(b) - azimuth_of(a);
+  return step < 0 ? step + kTwoPi : step;
+}
+
+void flag_ring(const LidarScan& scan, const std::vector<std::uint32_t>& ring, const MixedPixelConfig& config,
+               std::vector<bool>& mixed) {
+  const std::size_t n = ring.size();
+  if (n < 3) return;
+  std::vector<double> step(n);  // step[k]: from ring[k] to ring[(k + 1) % n]
+  for (std::size_t k = 0; k < n; ++k) step[k] = azimuth_step(scan.points[ring[k]], scan.points[ring[(k + 1) % n]]);
+  std::vector<double> sorted = step;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(n / 2), sorted.end());
+  const double max_step = config.max_step_ratio * sorted[n / 2];
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t prev = (k + n - 1) % n, next = (k + 1) % n;
+    if (step[prev] > max_step || step[k] > max_step) continue;
+    const double r = range_of(scan.points[ring[k]]);
+    const double r_prev = range_of(scan.points[ring[prev]]);
+    const double r_next = range_of(scan.points[ring[next]]);
+    const double min_gap = config.min_gap_ratio * r;
+    const double lo = std::min(r_prev, r_next), hi = std::max(r_prev, r_next);
+    if (r - lo > min_gap && hi - r > min_gap) mixed[ring[k]] = true;
+  }
+}
+
+}  // namespace
+
+std::vector<bool> mixed_pixels(const LidarScan& scan, const MixedPixelConfig& config) {
+  std::vector<bool> mixed(scan.points.size(), false);
+  if (!scan.has_ring) return mixed;
+  RingConfig all_ranges;
+  all_ranges.min_range_m = 0.01;  // returns at the origin (no echo) are no neighbours
+  all_ranges.max_range_m = std::numeric_limits<double>::infinity();
+  for (const std::vector<std::uint32_t>& ring : assign_rings(scan, all_ranges)) flag_ring(scan, ring, config, mixed);
+  return mixed;
+}
+
+}  // namespace vilslam::lidar
