@@ -20,8 +20,12 @@ void check_config(const MapBuilderConfig& c) {
     throw std::invalid_argument("range filter needs 0 <= min_range_m < max_range_m");
   }
   if (!(c.max_pose_gap_s > 0.0)) throw std::invalid_argument("max_pose_gap_s must be positive");
-  if (!(c.mixed_pixels.min_gap_ratio > 0.0) || !(c.mixed_pixels.max_step_ratio >= 1.0)) {
-    throw std::invalid_argument("mixed pixels need min_gap_ratio > 0 and max_step_ratio >= 1");
+  const lidar::MixedPixelConfig& m = c.mixed_pixels;
+  if (!(m.min_gap_ratio > 0.0) || !(m.max_step_ratio >= 1.0) || m.direction_neighbours < 2 ||
+      !(m.max_neighbour_angle_deg > 0.0 && m.max_neighbour_angle_deg < 90.0) ||
+      !(m.max_incidence_deg > 0.0 && m.max_incidence_deg < 90.0)) {
+    throw std::invalid_argument("mixed pixels need min_gap_ratio > 0, max_step_ratio >= 1, direction_neighbours >= 2 "
+                                "and max_neighbour_angle_deg and max_incidence_deg in (0, 90)");
   }
   if (c.window_start_ns >= c.window_end_ns) throw std::invalid_argument("time window is empty (start >= end)");
 }

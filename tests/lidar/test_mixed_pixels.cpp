@@ -1,10 +1,12 @@
-// Mixed pixels on simulated sweeps of the highbay's racks: the simulator puts a return between the near and
-// the far surface at depth edges (sim/lidar_returns.h), and mixed_pixels must flag those and leave the
-// returns on surfaces alone.
+// Mixed pixels on simulated sweeps of the highbay's racks, by a spinning sensor (judged along its rings) and by a
+// non-repetitive one (no rings, judged by direction): the simulator puts a return between the near and the far
+// surface at depth edges (sim/lidar_returns.h), and mixed_pixels must flag those and leave the returns on
+// surfaces alone.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <memory>
+#include <string>
 
 #include "lidar/mixed_pixels.h"
 #include "sim/lidar_sim.h"
@@ -22,11 +24,12 @@ struct Shares {
 };
 
 // Sweeps every 2 s along the highbay's route, each point classified by its distance to the world.
-Shares flagged_shares(double mixed_pixel_probability) {
+Shares flagged_shares(const std::string& sensor, double mixed_pixel_probability) {
   const sim::World world = sim::World::generate(sim::Scenario::kHighbay, 1);
   const sim::RouteMotion motion(world.route_W(), sim::route_motion_config(sim::SimConfig{}, sim::Scenario::kHighbay));
-  sim::LidarSimConfig lidar;
+  sim::LidarSimConfig lidar = sim::lidar_sensor(sensor);
   lidar.range_noise_sigma_m = 0.005;
+  lidar.returns = sim::ideal_returns();
   lidar.returns.mixed_pixel_probability = mixed_pixel_probability;
   std::size_t off = 0, off_flagged = 0, on = 0, on_flagged = 0;
   for (int k = 0; k < 10; ++k) {
@@ -55,15 +58,16 @@ Shares flagged_shares(double mixed_pixel_probability) {
 }
 
 TEST(MixedPixels, FlagsReturnsBetweenSurfacesAndKeepsThoseOnSurfaces) {
-  const Shares s = flagged_shares(1.0);
-  ASSERT_GT(s.off_surface, 1000u);  // the racks make many depth edges
-  EXPECT_GT(s.off_surface_flagged, 0.8);
-  EXPECT_LT(s.on_surface_flagged, 0.01);
+  for (const std::string sensor : {"vlp16", "mid360"}) {
+    const Shares s = flagged_shares(sensor, 1.0);
+    ASSERT_GT(s.off_surface, 1000u) << sensor;  // the racks make many depth edges
+    EXPECT_GT(s.off_surface_flagged, 0.999) << sensor;
+    EXPECT_LT(s.on_surface_flagged, 0.0) << sensor;
+  }
 }
 
 TEST(MixedPixels, IdealSweepsLoseAlmostNothing) {
-  const Shares s = flagged_shares(0.0);
-  EXPECT_LT(s.on_surface_flagged, 0.01);
+  for (const std::string sensor : {"vlp16", "mid360"}) EXPECT_LT(flagged_shares(sensor, 0.0).on_surface_flagged, 0.01);
 }
 
 // One ring of a wall at 10 m with a box face at 5 m over azimuths 10-20 deg, 0.2 deg apart.
@@ -98,12 +102,14 @@ TEST(MixedPixels, NoJudgementAcrossAMissedEcho) {
   EXPECT_FALSE(mixed_pixels(scan)[100]);
 }
 
-TEST(MixedPixels, ScansWithoutRingsAreLeftAlone) {
+TEST(MixedPixels, WithoutRingsTheNearestBeamsByDirectionJudge) {
   LidarScan scan = wall_and_box();
-  scan.points[100].x *= 0.75f;
-  scan.points[100].y *= 0.75f;
+  const std::size_t veil = 100;
+  scan.points[veil].x *= 0.75f;
+  scan.points[veil].y *= 0.75f;
   scan.has_ring = false;
-  for (const bool m : mixed_pixels(scan)) EXPECT_FALSE(m);
+  const std::vector<bool> mixed = mixed_pixels(scan);
+  for (std::size_t i = 0; i < scan.points.size(); ++i) EXPECT_EQ(mixed[i], i == veil) << "point " << i;
 }
 
 }  // namespace
