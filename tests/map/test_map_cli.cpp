@@ -97,6 +97,8 @@ TEST(MapCli, BadInputExitsTwoWithoutOutput) {
                                   "map " + data + " --poses " + poses + " --out " + out + " --start-s 1 --end-s 1",
                                   "map " + data + " --poses " + poses + " --out " + out + " --start-s 100",
                                   "map " + data + " --poses " + poses + " --out " + out + " --end-s nan",
+                                  "map " + data + " --poses " + poses + " --out " + out + " --mixed-gap-ratio 0",
+                                  "map " + data + " --poses " + poses + " --out " + out + " --mixed-gap-ratio nan",
                                   "map " + data + " --poses " + poses + " --out " + (dir / "map.txt").string()}) {
     const test::CliResult r = test::run_cli(args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
