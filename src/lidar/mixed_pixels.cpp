@@ -17,30 +17,28 @@ double range_of(const LidarPoint& p) { return std::sqrt(double(p.x) * p.x + doub
 
 double azimuth_of(const LidarPoint& p) { return std::atan2(double(p.y), double(p.x)); }
 
-// Azimuth step from point a to the next point b of a ring sorted by azimuth (the last to the first wraps).
-double azimuth_step(const LidarPoint& a, const LidarPoint& b) {
-  const double step = azimuth_of(b) - azimuth_of(a);
-  return step < 0 ? step + kTwoPi : step;
-}
-
 void flag_ring(const LidarScan& scan, const std::vector<std::uint32_t>& ring, const MixedPixelConfig& config,
                std::vector<bool>& mixed) {
   const std::size_t n = ring.size();
   if (n < 3) return;
-  std::vector<double> step(n);  // step[k]: from ring[k] to ring[(k + 1) % n]
-  for (std::size_t k = 0; k < n; ++k) step[k] = azimuth_step(scan.points[ring[k]], scan.points[ring[(k + 1) % n]]);
+  std::vector<double> range(n), azimuth(n), step(n);  // step[k]: ring[k] to ring[(k + 1) % n], the last wrapping
+  for (std::size_t k = 0; k < n; ++k) {
+    range[k] = range_of(scan.points[ring[k]]);
+    azimuth[k] = azimuth_of(scan.points[ring[k]]);
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    const double d = azimuth[(k + 1) % n] - azimuth[k];
+    step[k] = d < 0 ? d + kTwoPi : d;
+  }
   std::vector<double> sorted = step;
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(n / 2), sorted.end());
   const double max_step = config.max_step_ratio * sorted[n / 2];
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t prev = (k + n - 1) % n, next = (k + 1) % n;
     if (step[prev] > max_step || step[k] > max_step) continue;
-    const double r = range_of(scan.points[ring[k]]);
-    const double r_prev = range_of(scan.points[ring[prev]]);
-    const double r_next = range_of(scan.points[ring[next]]);
-    const double min_gap = config.min_gap_ratio * r;
-    const double lo = std::min(r_prev, r_next), hi = std::max(r_prev, r_next);
-    if (r - lo > min_gap && hi - r > min_gap) mixed[ring[k]] = true;
+    const double min_gap = config.min_gap_ratio * range[k];
+    const double lo = std::min(range[prev], range[next]), hi = std::max(range[prev], range[next]);
+    if (range[k] - lo > min_gap && hi - range[k] > min_gap) mixed[ring[k]] = true;
   }
 }
 
