@@ -1,7 +1,8 @@
 // LiDAR mapping cost per sweep for each simulated sensor model (docs/simulator.md) at the same place of
 // the highbay: feature extraction of the new sweep (rings for the VLP-16 and the 128-beam sensor, point
 // neighbourhoods for the non-repetitive one) plus its scan-to-map registration against the previous
-// sweep's features, from the previous pose (the walking motion of 0.1 s left to the registration).
+// sweep's features, from the previous pose (the walking motion of 0.1 s left to the registration), with each
+// sensor's run config (config/run_<sensor>.yaml).
 // Run: ./build/bin/bench_lidar_sensors --benchmark_repetitions=10 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -10,6 +11,7 @@
 
 #include "lidar/features.h"
 #include "lidar/lidar_config.h"
+#include "pipeline/run_config.h"
 #include "sim/lidar_sim.h"
 #include "sim/sim_config.h"
 #include "sim/trajectory.h"
@@ -47,7 +49,8 @@ const Case& load_case(int sensor) {
 
 void BM_SensorExtractAndRegister(benchmark::State& state) {
   const Case& c = load_case(static_cast<int>(state.range(0)));
-  const lidar::LidarConfig config;
+  const std::string sensor = kSensors[state.range(0)];
+  const lidar::LidarConfig config = load_run_config(VILSLAM_SOURCE_DIR "/config/run_" + sensor + ".yaml").lidar.lidar;
   lidar::FeatureMap map(config.map);
   map.insert(lidar::extract_features(c.previous, config.rings, config.features), c.T_W_L_previous);
   lidar::RegistrationResult result;
@@ -58,7 +61,7 @@ void BM_SensorExtractAndRegister(benchmark::State& state) {
     features = f.edges.size() + f.surfaces.size();
     benchmark::DoNotOptimize(result);
   }
-  state.SetLabel(kSensors[state.range(0)]);
+  state.SetLabel(sensor);
   state.counters["points"] = static_cast<double>(c.current.points.size());
   state.counters["features"] = static_cast<double>(features);
 }
