@@ -33,6 +33,7 @@ TEST(RunConfig, ShippedRigConfigsLoad) {
   EXPECT_TRUE(c.lidar.lidar.registration.remap_degenerate_directions);
   const OfflineRunConfig hesai = load_run_config(kConfigDir + "run_hesai128.yaml");
   EXPECT_EQ(hesai.lidar.lidar.features.method, lidar::FeatureMethod::kRings);
+  EXPECT_EQ(hesai.lidar.lidar.registration.tilt_prior_sigma_rad, 0.0);
   const OfflineRunConfig mid360 = load_run_config(kConfigDir + "run_mid360.yaml");
   EXPECT_EQ(mid360.lidar.lidar.features.method, lidar::FeatureMethod::kNeighbourhood);
   EXPECT_EQ(mid360.lidar.lidar.rings.max_range_m, 70.0);
