@@ -55,12 +55,16 @@ std::optional<EdgeCorrespondence> associate_edge(const Vec3& p_L, const Vec3& p_
 }
 
 std::optional<PlaneCorrespondence> associate_plane(const Vec3& p_L, const Vec3& p_W, const VoxelMap& surface_map,
-                                                   const AssociationConfig& config) {
+                                                   const AssociationConfig& config, const Vec3& normal_W) {
   const std::vector<Vec3> neighbors =
       surface_map.nearest(p_W, config.num_neighbors, config.max_neighbor_distance_m);
   if (static_cast<int>(neighbors.size()) < config.num_neighbors) return std::nullopt;
   const std::optional<Plane> plane = fit_plane(neighbors, config.max_plane_point_distance_m, config.min_plane_spread_ratio);
   if (!plane) return std::nullopt;
+  if (config.max_normal_angle_deg > 0.0 && !normal_W.isZero() &&
+      std::abs(plane->normal.dot(normal_W)) < std::cos(config.max_normal_angle_deg * M_PI / 180.0)) {
+    return std::nullopt;
+  }
   const double offset_m = config.plane_through_nearest ? -plane->normal.dot(neighbors.front()) : plane->offset_m;
   return PlaneCorrespondence{p_L, plane->normal, offset_m};
 }

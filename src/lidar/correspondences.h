@@ -22,6 +22,12 @@ struct AssociationConfig {
   // centroid's plane lies inside the surface and every query on it misses to the same side; two sweeps from one
   // pose then come out tilted against each other (docs/loop.md, "Plane fits of single key scans").
   bool plane_through_nearest = false;
+  // Normal compatibility (Rusinkiewicz and Levoy 2001, "Efficient variants of the ICP algorithm"): a surface
+  // point whose own normal is known is matched only to a plane within this angle of it; 0 = no test. Inside a
+  // corridor, neighbours that straddle the concave edge between a wall and the ceiling (or floor) fit a plane
+  // cutting the corner, nearer the sensor than either surface; the ceiling points matched to such planes pull the
+  // sensor down every sweep (docs/lidar.md, "Corner planes").
+  double max_normal_angle_deg = 0.0;
 };
 
 struct Line {
@@ -43,7 +49,8 @@ std::optional<Plane> fit_plane(const std::vector<Vec3>& points, double max_dista
 // are too few, too far, or not line-like / not planar.
 std::optional<EdgeCorrespondence> associate_edge(const Vec3& p_L, const Vec3& p_W, const VoxelMap& edge_map,
                                                  const AssociationConfig& config);
+// normal_W: the point's own unit normal in the world frame, zero when unknown (then no normal test).
 std::optional<PlaneCorrespondence> associate_plane(const Vec3& p_L, const Vec3& p_W, const VoxelMap& surface_map,
-                                                   const AssociationConfig& config);
+                                                   const AssociationConfig& config, const Vec3& normal_W = Vec3::Zero());
 
 }  // namespace vilslam::lidar

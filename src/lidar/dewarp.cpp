@@ -30,7 +30,9 @@ void dewarp_points(std::vector<FeaturePoint>& points, TimeNs scan_t_ns, TimeNs e
   const float end_offset_s = static_cast<float>(ns_to_s(end_t_ns - scan_t_ns));
   for (FeaturePoint& f : points) {
     // Paper eq. (dewarping): P~_i = (T^L_{k+1})^-1 T^L_i P_i.
-    f.p_L = to_end.at(scan_t_ns + s_to_ns(f.t_offset_s)) * f.p_L;
+    const SE3& T_end_i = to_end.at(scan_t_ns + s_to_ns(f.t_offset_s));
+    f.p_L = T_end_i * f.p_L;
+    f.normal_L = T_end_i.rotation() * f.normal_L;
     f.t_offset_s = end_offset_s;
   }
 }

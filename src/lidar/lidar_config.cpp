@@ -95,13 +95,18 @@ YamlFields lidar_yaml_fields(LidarConfig& c) {
                     yaml_value("max_neighbor_distance_m", a.max_neighbor_distance_m),
                     yaml_value("min_line_eigen_ratio", a.min_line_eigen_ratio),
                     yaml_value("max_plane_point_distance_m", a.max_plane_point_distance_m),
-                    yaml_value("min_plane_spread_ratio", a.min_plane_spread_ratio)}),
+                    yaml_value("min_plane_spread_ratio", a.min_plane_spread_ratio),
+                    yaml_value("max_normal_angle_deg", a.max_normal_angle_deg)}),
   };
 }
 
 void validate_lidar_config(const LidarConfig& c, const std::string& source) {
   if (!(c.registration.tilt_prior_sigma_rad >= 0.0)) {
     throw InputError(source, "registration.tilt_prior_sigma_rad must be >= 0 (0 = off)");
+  }
+  const double normal_angle_deg = c.registration.association.max_normal_angle_deg;
+  if (!(normal_angle_deg >= 0.0 && normal_angle_deg < 90.0)) {
+    throw InputError(source, "registration.max_normal_angle_deg must be in [0, 90) (0 = off)");
   }
   if (!(c.features.beam_divergence_rad >= 0.0)) {
     throw InputError(source, "features.beam_divergence_rad must be >= 0 (0 = off)");

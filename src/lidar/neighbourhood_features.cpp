@@ -21,6 +21,7 @@ struct Local {
   float score = 0;          // edges: curvature (higher first); surfaces: thickness in metres (lower first)
   float radius_m = 0;       // distance to the k-th neighbour
   int cell = -1;
+  Eigen::Vector3f normal = Eigen::Vector3f::Zero();  // surfaces: the scatter's smallest axis
 };
 
 int angular_cell(const Eigen::Vector3f& p, const NeighbourhoodFeatureConfig& config) {
@@ -49,7 +50,7 @@ Local classify(const PointIndex& index, std::size_t i, const NeighbourhoodFeatur
   }
   scatter /= static_cast<double>(neighbours.size());
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
-  eigen.computeDirect(scatter, Eigen::EigenvaluesOnly);
+  eigen.computeDirect(scatter);
   const Eigen::Vector3d lambda = eigen.eigenvalues().cwiseMax(0.0);
   const double thickness_m = std::sqrt(lambda(0));
   const double curvature = lambda(0) / std::max(lambda.sum(), 1e-12);
@@ -57,6 +58,7 @@ Local classify(const PointIndex& index, std::size_t i, const NeighbourhoodFeatur
       std::sqrt(lambda(1)) > config.min_surface_spread_ratio * std::max(thickness_m, 1e-3)) {
     local.kind = Kind::kSurface;
     local.score = static_cast<float>(thickness_m);
+    local.normal = eigen.eigenvectors().col(0).normalized().cast<float>();
   } else if (thickness_m > config.edge_min_noise_sigmas * sigma_m && curvature > config.edge_min_curvature) {
     local.kind = Kind::kEdge;
     local.score = static_cast<float>(curvature);
@@ -119,7 +121,7 @@ FeatureScan extract_neighbourhood_features(const LidarScan& scan, const Neighbou
   });
   const int cells = config.azimuth_cells * config.elevation_cells;
   const auto feature = [&](std::size_t i) {
-    return FeaturePoint{index.points()[i].cast<double>(), t_offset_s[i], locals[i].score};
+    return FeaturePoint{index.points()[i].cast<double>(), t_offset_s[i], locals[i].score, locals[i].normal.cast<double>()};
   };
   for (const std::size_t i : select(locals, index.points(), Kind::kEdge, config.max_edges_per_cell, cells)) {
     features.edges.push_back(feature(i));

@@ -16,10 +16,10 @@ struct Correspondences {
 
 // Matches every source point in parallel into its own slot, then compacts in index order (deterministic).
 template <typename Match, typename Associate>
-std::vector<Match> match_all(const std::vector<Vec3>& points_L, const SE3& T_W_L, Associate associate) {
+std::vector<Match> match_all(const std::vector<FeaturePoint>& points_L, const SE3& T_W_L, Associate associate) {
   std::vector<std::optional<Match>> slots(points_L.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points_L.size(), 64), [&](const auto& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) slots[i] = associate(points_L[i], T_W_L * points_L[i]);
+    for (std::size_t i = range.begin(); i != range.end(); ++i) slots[i] = associate(points_L[i], T_W_L * points_L[i].p_L);
   });
   std::vector<Match> matches;
   for (const auto& slot : slots) {
@@ -41,14 +41,14 @@ std::optional<TiltPrior> tilt_prior(const std::optional<Vec3>& up_L_prior, doubl
   return TiltPrior{*up_L_prior, ratio * ratio};
 }
 
-Correspondences associate(const std::vector<Vec3>& edges_L, const std::vector<Vec3>& surfaces_L,
+Correspondences associate(const std::vector<FeaturePoint>& edges_L, const std::vector<FeaturePoint>& surfaces_L,
                           const FeatureMap& map, const SE3& T_W_L, const AssociationConfig& config) {
   Correspondences c;
-  c.edges = match_all<EdgeCorrespondence>(edges_L, T_W_L, [&](const Vec3& p_L, const Vec3& p_W) {
-    return associate_edge(p_L, p_W, map.edges, config);
+  c.edges = match_all<EdgeCorrespondence>(edges_L, T_W_L, [&](const FeaturePoint& f, const Vec3& p_W) {
+    return associate_edge(f.p_L, p_W, map.edges, config);
   });
-  c.planes = match_all<PlaneCorrespondence>(surfaces_L, T_W_L, [&](const Vec3& p_L, const Vec3& p_W) {
-    return associate_plane(p_L, p_W, map.surfaces, config);
+  c.planes = match_all<PlaneCorrespondence>(surfaces_L, T_W_L, [&](const FeaturePoint& f, const Vec3& p_W) {
+    return associate_plane(f.p_L, p_W, map.surfaces, config, T_W_L.rotation() * f.normal_L);
   });
   return c;
 }
@@ -155,11 +155,14 @@ void levenberg_marquardt(const Correspondences& c, const std::optional<TiltPrior
   }
 }
 
-std::vector<Vec3> positions(const std::vector<FeaturePoint>& points, double leaf_m) {
+std::vector<FeaturePoint> downsampled(const std::vector<FeaturePoint>& points, double leaf_m) {
+  if (leaf_m <= 0.0) return points;
   std::vector<Vec3> p;
   p.reserve(points.size());
   for (const FeaturePoint& f : points) p.push_back(f.p_L);
-  return leaf_m > 0.0 ? voxel_downsample(p, leaf_m) : p;
+  std::vector<FeaturePoint> kept;
+  for (const std::size_t i : voxel_downsample_indices(p, leaf_m)) kept.push_back(points[i]);
+  return kept;
 }
 
 }  // namespace
@@ -168,8 +171,8 @@ RegistrationResult register_scan(const FeatureScan& features_L, const FeatureMap
                                  const RegistrationConfig& config, const std::optional<Vec3>& up_L_prior,
                                  double up_L_prior_sigma_rad) {
   const std::optional<TiltPrior> tilt = tilt_prior(up_L_prior, up_L_prior_sigma_rad, config);
-  const std::vector<Vec3> edges_L = positions(features_L.edges, config.source_edge_leaf_m);
-  const std::vector<Vec3> surfaces_L = positions(features_L.surfaces, config.source_surface_leaf_m);
+  const std::vector<FeaturePoint> edges_L = downsampled(features_L.edges, config.source_edge_leaf_m);
+  const std::vector<FeaturePoint> surfaces_L = downsampled(features_L.surfaces, config.source_surface_leaf_m);
   RegistrationResult result;
   result.T_W_L = T_W_L_init;
   result.num_edge_features = static_cast<int>(edges_L.size());

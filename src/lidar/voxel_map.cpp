@@ -100,12 +100,18 @@ std::vector<Vec3> VoxelMap::points() const {
   return all;
 }
 
-std::vector<Vec3> voxel_downsample(const std::vector<Vec3>& points, double leaf_m) {
+std::vector<std::size_t> voxel_downsample_indices(const std::vector<Vec3>& points, double leaf_m) {
   tsl::robin_set<Eigen::Vector3i, VoxelKeyHash> seen;
-  std::vector<Vec3> kept;
-  for (const Vec3& p : points) {
-    if (seen.insert(floor_key(p, leaf_m)).second) kept.push_back(p);
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (seen.insert(floor_key(points[i], leaf_m)).second) kept.push_back(i);
   }
+  return kept;
+}
+
+std::vector<Vec3> voxel_downsample(const std::vector<Vec3>& points, double leaf_m) {
+  std::vector<Vec3> kept;
+  for (const std::size_t i : voxel_downsample_indices(points, leaf_m)) kept.push_back(points[i]);
   return kept;
 }
 

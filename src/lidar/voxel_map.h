@@ -49,5 +49,7 @@ class VoxelMap {
 
 // Keeps the first point of each voxel of side leaf_m (in input order): a deterministic downsampling.
 std::vector<Vec3> voxel_downsample(const std::vector<Vec3>& points, double leaf_m);
+// The same choice, as the indices of the kept points (ascending).
+std::vector<std::size_t> voxel_downsample_indices(const std::vector<Vec3>& points, double leaf_m);
 
 }  // namespace vilslam::lidar

@@ -67,6 +67,32 @@ TEST(AssociatePlane, ThroughTheNearestNeighbourItFollowsACurvedSurface) {
   EXPECT_LT(std::abs(residual_m(true)), 0.001);
 }
 
+// A corridor's ceiling (z = 0) meets its wall (x = 0) in a concave crease. A ceiling query 0.1 m from the wall
+// finds three ceiling and two wall neighbours (those 10 cm below the crease); their plane cuts the corner, over 10 deg
+// off the ceiling and below it. Matched to it, the query pulls the sensor towards the floor. With the query's own
+// normal (up), the plane fails the normal test; a query of unknown normal keeps the old behaviour.
+TEST(AssociatePlane, TheNormalTestRejectsAPlaneAcrossACrease) {
+  VoxelMapConfig map_config;
+  map_config.min_point_spacing_m = 0.01;
+  VoxelMap map(map_config);
+  map.insert({Vec3(0.25, 0.3, 0), Vec3(0.25, 0.7, 0), Vec3(0.45, 0.5, 0), Vec3(0, 0.4, -0.1), Vec3(0, 0.6, -0.1)});
+  const Vec3 query(0.1, 0.5, 0);
+  const Vec3 up = Vec3::UnitZ();
+  AssociationConfig config;
+  const std::optional<PlaneCorrespondence> crease = associate_plane(query, query, map, config, up);
+  ASSERT_TRUE(crease.has_value());
+  const double tilt_deg = std::acos(std::abs(crease->normal_W.z())) * 180.0 / M_PI;
+  EXPECT_GT(tilt_deg, 10.0);
+  EXPECT_GT(std::abs(crease->normal_W.dot(query) + crease->offset_m), 0.005);  // the query misses the plane
+  config.max_normal_angle_deg = 10.0;
+  EXPECT_FALSE(associate_plane(query, query, map, config, up).has_value());
+  EXPECT_TRUE(associate_plane(query, query, map, config, Vec3::Zero()).has_value());
+  // Away from the crease the same test keeps the ceiling's own plane.
+  VoxelMap ceiling(map_config);
+  ceiling.insert({Vec3(0.25, 0.3, 0), Vec3(0.25, 0.7, 0), Vec3(0.45, 0.5, 0), Vec3(0.45, 0.3, 0), Vec3(0.45, 0.7, 0)});
+  EXPECT_TRUE(associate_plane(query, query, ceiling, config, up).has_value());
+}
+
 TEST(FitLine, NeedsAnElongatedScatter) {
   std::mt19937 rng(3);
   const std::optional<Line> line = fit_line(ring_points(rng), 3.0);

@@ -55,6 +55,14 @@ TEST(Dewarp, FeaturePointsMoveToTheEndFrame) {
   for (const FeaturePoint& f : dewarped.surfaces) {
     ASSERT_LT(distance_to_surfaces(scene, T_W_end * f.p_L), 1e-6);
   }
+  // A normal turns with its point: the surface's normal in the end frame (ring features have none; give them one).
+  FeatureScan with_normals = features;
+  for (FeaturePoint& f : with_normals.surfaces) f.normal_L = Vec3::UnitZ();
+  const FeatureScan turned = dewarp(with_normals, end_t_ns, moving_pose);
+  for (std::size_t i = 0; i < turned.surfaces.size(); ++i) {
+    const SE3 T_W_i = moving_pose(raw.t_ns + s_to_ns(features.surfaces[i].t_offset_s));
+    EXPECT_LT((T_W_end.rotation() * turned.surfaces[i].normal_L - T_W_i.rotation() * Vec3::UnitZ()).norm(), 1e-9);
+  }
   for (std::size_t i = 0; i < features.edges.size(); ++i) {
     // Each edge point is the world point it was, seen from the end pose (paper eq.: P~ = T_{k+1}^-1 T_i P).
     const FeaturePoint& before = features.edges[i];

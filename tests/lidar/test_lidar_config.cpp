@@ -13,7 +13,8 @@ TEST(LidarConfig, LoadsOverridesAndKeepsDefaults) {
   const std::string path = (test::temp_dir() / "lidar.yaml").string();
   std::ofstream(path) << "rings:\n  num_rings: 32\n  min_elevation_deg: -30.67\nfeatures:\n  sectors_per_ring: 8\n"
                          "map:\n  surfaces:\n    min_point_spacing_m: 0.5\nregistration:\n  loss: huber\n"
-                         "  remap_degenerate_directions: true\n  num_neighbors: 6\n  tilt_prior_sigma_rad: 0.005\n";
+                         "  remap_degenerate_directions: true\n  num_neighbors: 6\n  tilt_prior_sigma_rad: 0.005\n"
+                         "  max_normal_angle_deg: 10\n";
   const LidarConfig c = load_lidar_config(path);
   EXPECT_EQ(c.rings.num_rings, 32);
   EXPECT_DOUBLE_EQ(c.rings.min_elevation_deg, -30.67);
@@ -25,6 +26,8 @@ TEST(LidarConfig, LoadsOverridesAndKeepsDefaults) {
   EXPECT_TRUE(c.registration.remap_degenerate_directions);
   EXPECT_EQ(c.registration.association.num_neighbors, 6);
   EXPECT_DOUBLE_EQ(c.registration.tilt_prior_sigma_rad, 0.005);
+  EXPECT_DOUBLE_EQ(c.registration.association.max_normal_angle_deg, 10.0);
+  EXPECT_DOUBLE_EQ(LidarConfig{}.registration.association.max_normal_angle_deg, 0.0);  // off unless configured
 }
 
 TEST(LidarConfig, RejectsUnknownKeysBadValuesAndMissingFiles) {
@@ -43,6 +46,8 @@ TEST(LidarConfig, RejectsUnknownKeysBadValuesAndMissingFiles) {
   EXPECT_THROW(load_lidar_config((dir / "zero.yaml").string()), InputError);
   std::ofstream(dir / "sigma.yaml") << "registration:\n  tilt_prior_sigma_rad: -0.005\n";
   EXPECT_THROW(load_lidar_config((dir / "sigma.yaml").string()), InputError);
+  std::ofstream(dir / "normal.yaml") << "registration:\n  max_normal_angle_deg: 90\n";
+  EXPECT_THROW(load_lidar_config((dir / "normal.yaml").string()), InputError);
   EXPECT_THROW(load_lidar_config((dir / "absent.yaml").string()), InputError);
 }
 

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "lidar/features.h"
 #include "sim/lidar_beams.h"
 #include "sim/rng.h"
@@ -69,6 +71,14 @@ TEST(NeighbourhoodFeatures, EdgesOnBoxEdgesAndSurfacesOnFaces) {
             << f.surfaces.size() << " surfaces off the creases\n";
   EXPECT_GT(near_edges, 0.9 * f.edges.size());
   EXPECT_GT(off_edges, 0.99 * f.surfaces.size());
+  // A surface's normal is its face's (the room's faces are axis-aligned): within 10 deg for nearly all of them.
+  int along_an_axis = 0;
+  for (const FeaturePoint& s : f.surfaces) {
+    ASSERT_NEAR(s.normal_L.norm(), 1.0, 1e-6);
+    along_an_axis += s.normal_L.cwiseAbs().maxCoeff() > std::cos(10.0 * M_PI / 180.0);
+  }
+  EXPECT_GT(along_an_axis, 0.98 * f.surfaces.size());
+  for (const FeaturePoint& e : f.edges) EXPECT_TRUE(e.normal_L.isZero());
   // Deterministic, in scan order.
   const FeatureScan again = extract_features(scan, RingConfig{}, config);
   ASSERT_EQ(again.surfaces.size(), f.surfaces.size());
