@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lidar/ring_normals.h"
+
 namespace vilslam::lidar {
 
 namespace {
@@ -104,9 +106,12 @@ void suppress_neighbours(RingPoints& ring, int i, int half_window, float max_gap
   }
 }
 
-// Takes the sharpest usable points of ring[begin, end) as edges and the flattest as surfaces (LOAM Sec. V-A).
+// Takes the sharpest usable points of ring[begin, end) as edges and the flattest as surfaces (LOAM Sec. V-A);
+// a surface carries the normal that surface_normal(i) gives it.
+template <typename SurfaceNormal>
 void select_in_sector(RingPoints& ring, int begin, int end, const FeatureConfig& config,
-                      std::vector<FeaturePoint>& edges, std::vector<FeaturePoint>& surfaces) {
+                      const SurfaceNormal& surface_normal, std::vector<FeaturePoint>& edges,
+                      std::vector<FeaturePoint>& surfaces) {
   // Candidates in order of selection: sharpest edges first, flattest surfaces first (ties by position).
   std::vector<int> edge_candidates, surface_candidates;
   for (int i = begin; i < end; ++i) {
@@ -126,18 +131,24 @@ void select_in_sector(RingPoints& ring, int begin, int end, const FeatureConfig&
   std::sort(edge_candidates.begin(), edge_candidates.end(), sharper);
   std::sort(surface_candidates.begin(), surface_candidates.end(), flatter);
   constexpr float kSuppressGapM = 0.2f;
-  const auto take = [&](const std::vector<int>& candidates, int max_count, std::vector<FeaturePoint>& out) {
+  const auto take = [&](const std::vector<int>& candidates, int max_count, bool with_normal,
+                        std::vector<FeaturePoint>& out) {
     int taken = 0;
     for (auto it = candidates.begin(); it != candidates.end() && taken < max_count; ++it) {
       if (!ring.usable[*it]) continue;
-      out.push_back({ring.p[*it].cast<double>(), ring.t_offset_s[*it], ring.smoothness[*it]});
+      out.push_back({ring.p[*it].cast<double>(), ring.t_offset_s[*it], ring.smoothness[*it],
+                     with_normal ? surface_normal(*it) : Vec3::Zero()});
       suppress_neighbours(ring, *it, config.half_window, kSuppressGapM);
       ++taken;
     }
   };
-  take(edge_candidates, config.max_edges_per_sector, edges);
-  take(surface_candidates, config.max_surfaces_per_sector, surfaces);
+  take(edge_candidates, config.max_edges_per_sector, false, edges);
+  take(surface_candidates, config.max_surfaces_per_sector, true, surfaces);
 }
+
+// The windows of neighbouring rings give a surface point its normal when they lie within this many range
+// sigmas (rms) of one plane with its own: three keeps a noisy plane (rms one sigma) and leaves out a crease.
+constexpr double kNormalMaxThicknessSigmas = 3.0;
 
 }  // namespace
 
@@ -165,17 +176,30 @@ FeatureScan extract_features(const LidarScan& scan, const RingConfig& ring_confi
     config.max_edges_per_sector = scaled(config.max_edges_per_sector);
     config.max_surfaces_per_sector = scaled(config.max_surfaces_per_sector);
   }
+  std::vector<RingPoints> ring_points;
+  ring_points.reserve(rings.size());
+  std::vector<const std::vector<Eigen::Vector3f>*> curves;
   for (const std::vector<std::uint32_t>& indices : rings) {
-    const int n = static_cast<int>(indices.size());
+    ring_points.push_back(gather(scan, indices));
+    curves.push_back(&ring_points.back().p);
+  }
+  // Normals from twice the smoothness window: over +-5 samples the range noise tilts them by several degrees.
+  const RingNormals normals(curves, 2 * w);
+  for (int k = 0; k < num_rings; ++k) {
+    RingPoints& ring = ring_points[k];
+    const int n = static_cast<int>(ring.p.size());
     if (n < 2 * w + 2) continue;
-    RingPoints ring = gather(scan, indices);
     compute_smoothness(ring, w);
     reject_unreliable(ring, config);
+    // A surface's normal where its neighbouring rings show its plane within range noise (ring_normals.h).
+    const auto surface_normal = [&](int i) {
+      return normals.normal(k, i, kNormalMaxThicknessSigmas * range_sigma_m(ring, i, config));
+    };
     const int span = n - 2 * w;
     for (int s = 0; s < config.sectors_per_ring; ++s) {
       const int begin = w + span * s / config.sectors_per_ring;
       const int end = w + span * (s + 1) / config.sectors_per_ring;
-      select_in_sector(ring, begin, end, config, features.edges, features.surfaces);
+      select_in_sector(ring, begin, end, config, surface_normal, features.edges, features.surfaces);
     }
   }
   return features;

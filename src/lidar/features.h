@@ -49,8 +49,9 @@ struct FeaturePoint {
   Vec3 p_L = Vec3::Zero();
   float t_offset_s = 0.0f;  // since the scan's t_ns
   float smoothness = 0.0f;  // LOAM eq. (1); neighbourhood features: curvature (edges), thickness in m (surfaces)
-  // Unit normal of a surface feature's own neighbourhood in the sweep (neighbourhood features); zero when the
-  // extractor gives none (ring features, features read from a map file).
+  // Unit normal of a surface feature from its neighbourhood in the sweep (neighbourhood features: its k nearest
+  // points; ring features: the neighbouring rings, ring_normals.h); zero for edges, for a surface whose
+  // neighbourhood shows no plane, and for features read from a map file.
   Vec3 normal_L = Vec3::Zero();
 };
 

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "lidar/features.h"
 #include "synthetic_scene.h"
 
@@ -50,6 +52,48 @@ TEST(Features, EdgesOnBoxEdgesAndSurfacesOnFaces) {
   // along them): no surface point sits on a vertical edge.
   for (const FeaturePoint& s : f.surfaces) {
     EXPECT_GT(test::distance_to_scene_edges(scene, T_W_L * s.p_L, true), 0.05) << (T_W_L * s.p_L).transpose();
+  }
+}
+
+// The room's faces are axis-aligned in W: a surface normal seen in W lies within max_deg of an axis.
+bool along_an_axis(const Vec3& n_W, double max_deg) {
+  return n_W.cwiseAbs().maxCoeff() > std::cos(max_deg * M_PI / 180.0);
+}
+
+TEST(Features, RingSurfacesTakeTheirFacesNormalFromTheNeighbouringRings) {
+  const test::Scene scene = test::box_room();
+  // Tilted and noisy (2 cm, the oblique footprint), so that the normals are neither the sensor's axes nor exact.
+  const SE3 T_W_L(Quat(Eigen::AngleAxisd(0.2, Vec3(1, 2, 0).normalized())), Vec3(0.5, -1.0, 0.3));
+  const LidarScan scan = test::sweep(scene, [T_W_L](TimeNs) { return T_W_L; }, 0, 0.1, 0.2, 0.02, 0.003);
+  const FeatureScan f = extract_features(scan, RingConfig{}, FeatureConfig{});
+  int with_normal = 0, on_the_face = 0;
+  for (const FeaturePoint& s : f.surfaces) {
+    if (s.normal_L.isZero()) continue;
+    ++with_normal;
+    ASSERT_NEAR(s.normal_L.norm(), 1.0, 1e-9);
+    on_the_face += along_an_axis(T_W_L.rotation() * s.normal_L, 10.0);
+  }
+  for (const FeaturePoint& e : f.edges) EXPECT_TRUE(e.normal_L.isZero());
+  // Nearly every surface point has a normal, and nearly every normal is its face's (within the 10 deg of the
+  // registration's normal test), also next to the creases and the blocks' edges.
+  EXPECT_GT(with_normal, 0.9 * f.surfaces.size()) << f.surfaces.size() << " surfaces";
+  EXPECT_GT(on_the_face, 0.99 * with_normal) << with_normal << " normals";
+
+  // Ring numbers that do not follow elevation (interleaved lasers) give the same normals: neighbours are found
+  // by elevation.
+  LidarScan interleaved = scan;
+  for (LidarPoint& p : interleaved.points) p.ring = static_cast<std::uint16_t>((p.ring * 5) % 16);
+  const FeatureScan g = extract_features(interleaved, RingConfig{}, FeatureConfig{});
+  ASSERT_EQ(g.surfaces.size(), f.surfaces.size());
+  const auto by_position = [](const FeaturePoint& a, const FeaturePoint& b) {
+    return std::lexicographical_compare(a.p_L.data(), a.p_L.data() + 3, b.p_L.data(), b.p_L.data() + 3);
+  };
+  std::vector<FeaturePoint> fs = f.surfaces, gs = g.surfaces;
+  std::sort(fs.begin(), fs.end(), by_position);
+  std::sort(gs.begin(), gs.end(), by_position);
+  for (std::size_t i = 0; i < fs.size(); ++i) {
+    ASSERT_EQ(gs[i].p_L, fs[i].p_L);
+    EXPECT_EQ(gs[i].normal_L, fs[i].normal_L) << fs[i].p_L.transpose();
   }
 }
 
