@@ -63,7 +63,7 @@ const Case* load_case(bool vlp16_sized) {
 void BM_FeatureExtraction(benchmark::State& state) {
   const Case* c = load_case(state.range(0) == 1);
   for (auto _ : state) {
-    benchmark::DoNotOptimize(lidar::extract_features(c->source, c->config.rings, c->config.features));
+    benchmark::DoNotOptimize(lidar::extract_features(c->source, c->config.rings, lidar::features_for_registration(c->config)));
   }
   state.counters["points"] = static_cast<double>(c->source.points.size());
 }
@@ -71,10 +71,10 @@ void BM_FeatureExtraction(benchmark::State& state) {
 void BM_ExtractAndRegister(benchmark::State& state) {
   const Case* c = load_case(state.range(0) == 1);
   lidar::FeatureMap map(c->config.map);
-  map.insert(lidar::extract_features(c->target, c->config.rings, c->config.features), SE3());
+  map.insert(lidar::extract_features(c->target, c->config.rings, lidar::features_for_registration(c->config)), SE3());
   lidar::RegistrationResult result;
   for (auto _ : state) {
-    const lidar::FeatureScan features = lidar::extract_features(c->source, c->config.rings, c->config.features);
+    const lidar::FeatureScan features = lidar::extract_features(c->source, c->config.rings, lidar::features_for_registration(c->config));
     result = lidar::register_scan(features, map, SE3(), c->config.registration);
     benchmark::DoNotOptimize(result);
   }

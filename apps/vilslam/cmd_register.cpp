@@ -81,7 +81,8 @@ int run(const Options& o) {
   }
   const SE3 T_init = o.init.empty() ? SE3() : SE3(read_matrix(o.init));
   const auto features_of = [&](const std::string& path) {
-    return lidar::extract_features(scan_from_cloud(read_cloud(path)), config.rings, config.features);
+    return lidar::extract_features(scan_from_cloud(read_cloud(path)), config.rings,
+                                   lidar::features_for_registration(config));
   };
   const lidar::FeatureScan target = features_of(o.target);
   const lidar::FeatureScan source = features_of(o.source);

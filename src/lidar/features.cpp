@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "lidar/ring_normals.h"
 
@@ -184,7 +185,8 @@ FeatureScan extract_features(const LidarScan& scan, const RingConfig& ring_confi
     curves.push_back(&ring_points.back().p);
   }
   // Normals from twice the smoothness window: over +-5 samples the range noise tilts them by several degrees.
-  const RingNormals normals(curves, 2 * w);
+  std::optional<RingNormals> normals;
+  if (config.ring_normals) normals.emplace(curves, 2 * w);
   for (int k = 0; k < num_rings; ++k) {
     RingPoints& ring = ring_points[k];
     const int n = static_cast<int>(ring.p.size());
@@ -193,7 +195,7 @@ FeatureScan extract_features(const LidarScan& scan, const RingConfig& ring_confi
     reject_unreliable(ring, config);
     // A surface's normal where its neighbouring rings show its plane within range noise (ring_normals.h).
     const auto surface_normal = [&](int i) {
-      return normals.normal(k, i, kNormalMaxThicknessSigmas * range_sigma_m(ring, i, config));
+      return normals ? normals->normal(k, i, kNormalMaxThicknessSigmas * range_sigma_m(ring, i, config)) : Vec3::Zero();
     };
     const int span = n - 2 * w;
     for (int s = 0; s < config.sectors_per_ring; ++s) {

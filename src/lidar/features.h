@@ -23,6 +23,10 @@ struct FeatureConfig {
   // With more rings than this the per-sector counts shrink in proportion (a 128-beam sensor takes a quarter
   // per ring), so that a sweep gives no more features than a sensor of this many rings.
   int reference_rings = 32;
+  // Ring surface features get normals from their neighbouring rings (ring_normals.h). They cost a few ms a
+  // sweep and only the registration's normal test uses them: features_for_registration (lidar_config.h) sets
+  // this from it.
+  bool ring_normals = false;
   NeighbourhoodFeatureConfig neighbourhood;
   int half_window = 5;              // neighbours on each side along the ring for the smoothness
   int sectors_per_ring = 6;         // each ring is split into this many equal sub-regions
@@ -50,8 +54,8 @@ struct FeaturePoint {
   float t_offset_s = 0.0f;  // since the scan's t_ns
   float smoothness = 0.0f;  // LOAM eq. (1); neighbourhood features: curvature (edges), thickness in m (surfaces)
   // Unit normal of a surface feature from its neighbourhood in the sweep (neighbourhood features: its k nearest
-  // points; ring features: the neighbouring rings, ring_normals.h); zero for edges, for a surface whose
-  // neighbourhood shows no plane, and for features read from a map file.
+  // points; ring features, with FeatureConfig::ring_normals: the neighbouring rings, ring_normals.h); zero for
+  // edges, for a surface whose neighbourhood shows no plane, and for features read from a map file.
   Vec3 normal_L = Vec3::Zero();
 };
 

@@ -100,6 +100,12 @@ YamlFields lidar_yaml_fields(LidarConfig& c) {
   };
 }
 
+FeatureConfig features_for_registration(const LidarConfig& c) {
+  FeatureConfig features = c.features;
+  features.ring_normals = c.registration.association.max_normal_angle_deg > 0.0;
+  return features;
+}
+
 void validate_lidar_config(const LidarConfig& c, const std::string& source) {
   if (!(c.registration.tilt_prior_sigma_rad >= 0.0)) {
     throw InputError(source, "registration.tilt_prior_sigma_rad must be >= 0 (0 = off)");

@@ -22,6 +22,9 @@ struct LidarConfig {
 // The sections rings, features, map (edges, surfaces) and registration, bound to c's fields.
 YamlFields lidar_yaml_fields(LidarConfig& c);
 
+// c's feature settings as its registration needs them: ring normals only where the normal test uses them.
+FeatureConfig features_for_registration(const LidarConfig& c);
+
 // Throws InputError(source, ...) when a count or voxel size is not positive.
 void validate_lidar_config(const LidarConfig& c, const std::string& source);
 

@@ -86,7 +86,7 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
   const auto prior_T_W_L = [&](TimeNs t_ns) { return T_W_I_prior(t_ns) * T_I_L_; };
 
   // Features come from the raw sweep, before dewarping (paper Sec. "Lidar mapping").
-  const FeatureScan raw = extract_features(scan, config_.lidar.rings, config_.lidar.features);
+  const FeatureScan raw = extract_features(scan, config_.lidar.rings, features_for_registration(config_.lidar));
   FeatureScan features = raw;
 
   std::optional<SE3> T_W_L_prior_end;

@@ -65,7 +65,10 @@ TEST(Features, RingSurfacesTakeTheirFacesNormalFromTheNeighbouringRings) {
   // Tilted and noisy (2 cm, the oblique footprint), so that the normals are neither the sensor's axes nor exact.
   const SE3 T_W_L(Quat(Eigen::AngleAxisd(0.2, Vec3(1, 2, 0).normalized())), Vec3(0.5, -1.0, 0.3));
   const LidarScan scan = test::sweep(scene, [T_W_L](TimeNs) { return T_W_L; }, 0, 0.1, 0.2, 0.02, 0.003);
-  const FeatureScan f = extract_features(scan, RingConfig{}, FeatureConfig{});
+  FeatureConfig config;
+  EXPECT_TRUE(extract_features(scan, RingConfig{}, config).surfaces.front().normal_L.isZero());  // not asked for
+  config.ring_normals = true;
+  const FeatureScan f = extract_features(scan, RingConfig{}, config);
   int with_normal = 0, on_the_face = 0;
   for (const FeaturePoint& s : f.surfaces) {
     if (s.normal_L.isZero()) continue;
@@ -83,7 +86,7 @@ TEST(Features, RingSurfacesTakeTheirFacesNormalFromTheNeighbouringRings) {
   // by elevation.
   LidarScan interleaved = scan;
   for (LidarPoint& p : interleaved.points) p.ring = static_cast<std::uint16_t>((p.ring * 5) % 16);
-  const FeatureScan g = extract_features(interleaved, RingConfig{}, FeatureConfig{});
+  const FeatureScan g = extract_features(interleaved, RingConfig{}, config);
   ASSERT_EQ(g.surfaces.size(), f.surfaces.size());
   const auto by_position = [](const FeaturePoint& a, const FeaturePoint& b) {
     return std::lexicographical_compare(a.p_L.data(), a.p_L.data() + 3, b.p_L.data(), b.p_L.data() + 3);
