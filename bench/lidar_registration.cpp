@@ -62,19 +62,21 @@ const Case* load_case(bool vlp16_sized) {
 
 void BM_FeatureExtraction(benchmark::State& state) {
   const Case* c = load_case(state.range(0) == 1);
+  const lidar::FeatureConfig features = lidar::features_for_registration(c->config);
   for (auto _ : state) {
-    benchmark::DoNotOptimize(lidar::extract_features(c->source, c->config.rings, lidar::features_for_registration(c->config)));
+    benchmark::DoNotOptimize(lidar::extract_features(c->source, c->config.rings, features));
   }
   state.counters["points"] = static_cast<double>(c->source.points.size());
 }
 
 void BM_ExtractAndRegister(benchmark::State& state) {
   const Case* c = load_case(state.range(0) == 1);
+  const lidar::FeatureConfig feature_config = lidar::features_for_registration(c->config);
   lidar::FeatureMap map(c->config.map);
-  map.insert(lidar::extract_features(c->target, c->config.rings, lidar::features_for_registration(c->config)), SE3());
+  map.insert(lidar::extract_features(c->target, c->config.rings, feature_config), SE3());
   lidar::RegistrationResult result;
   for (auto _ : state) {
-    const lidar::FeatureScan features = lidar::extract_features(c->source, c->config.rings, lidar::features_for_registration(c->config));
+    const lidar::FeatureScan features = lidar::extract_features(c->source, c->config.rings, feature_config);
     result = lidar::register_scan(features, map, SE3(), c->config.registration);
     benchmark::DoNotOptimize(result);
   }

@@ -51,12 +51,13 @@ void BM_SensorExtractAndRegister(benchmark::State& state) {
   const Case& c = load_case(static_cast<int>(state.range(0)));
   const std::string sensor = kSensors[state.range(0)];
   const lidar::LidarConfig config = load_run_config(VILSLAM_SOURCE_DIR "/config/run_" + sensor + ".yaml").lidar.lidar;
+  const lidar::FeatureConfig feature_config = lidar::features_for_registration(config);
   lidar::FeatureMap map(config.map);
-  map.insert(lidar::extract_features(c.previous, config.rings, lidar::features_for_registration(config)), c.T_W_L_previous);
+  map.insert(lidar::extract_features(c.previous, config.rings, feature_config), c.T_W_L_previous);
   lidar::RegistrationResult result;
   std::size_t features = 0;
   for (auto _ : state) {
-    const lidar::FeatureScan f = lidar::extract_features(c.current, config.rings, lidar::features_for_registration(config));
+    const lidar::FeatureScan f = lidar::extract_features(c.current, config.rings, feature_config);
     result = lidar::register_scan(f, map, c.T_W_L_previous, config.registration);
     features = f.edges.size() + f.surfaces.size();
     benchmark::DoNotOptimize(result);

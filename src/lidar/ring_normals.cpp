@@ -122,7 +122,7 @@ Vec3 RingNormals::normal(int k, int i, double max_thickness_m) const {
     return window_sums(ring, std::max(0, j - w), std::min(static_cast<int>(ring.size()) - 1, j + w), origin);
   };
   const WindowSums own_sums = window_sums(own, first, last, origin);
-  const WindowSums below2 = window(-2), below = window(-1), above = window(1), above2 = window(2);
+  const WindowSums below = window(-1), above = window(1);
   // The own window and two neighbouring rings: a plane through two ring segments always exists (two nearly
   // parallel lines), but at a crease or an edge a third ring leaves it. One ring on each side first; where
   // those do not share a plane within max_thickness_m, the thinner of two above or two below, so that a point
@@ -137,7 +137,8 @@ Vec3 RingNormals::normal(int k, int i, double max_thickness_m) const {
   };
   const PlaneFit across = fit(below, above);
   if (!across.normal.isZero()) return across.normal;
-  const PlaneFit upper = fit(above, above2), lower = fit(below, below2);
+  // The second rings out only when the first two do not share the point's plane (near a crease or an edge).
+  const PlaneFit upper = fit(above, window(2)), lower = fit(below, window(-2));
   if (upper.normal.isZero() || (!lower.normal.isZero() && lower.thickness_m < upper.thickness_m)) return lower.normal;
   return upper.normal;
 }
