@@ -1,3 +1,15 @@
+# Precompiled headers (VILSLAM_PCH): the standard, Eigen and OpenCV core headers most files include, parsed
+# once into vilslam_pch and reused by every module, the CLI and the benchmarks; the tests add GoogleTest's
+# (tests/CMakeLists.txt). A header the PCH holds still needs its own #include where it is used.
+set(VILSLAM_PCH_HEADERS <algorithm> <cmath> <cstdint> <filesystem> <fstream> <functional> <map> <memory>
+    <optional> <sstream> <stdexcept> <string> <vector> <Eigen/Core> <Eigen/Geometry> <opencv2/core.hpp>)
+# vilslam_use_pch(<target>): <target> reuses vilslam_pch when VILSLAM_PCH is on.
+function(vilslam_use_pch target)
+  if(VILSLAM_PCH)
+    target_precompile_headers(${target} REUSE_FROM vilslam_pch)
+  endif()
+endfunction()
+
 # vilslam_module(<name> DEPS <targets...>)
 # Builds src/<name>/*.cpp into the static library vilslam_<name>; a module without sources yet is an
 # INTERFACE library so that dependants still configure.
@@ -11,6 +23,7 @@ function(vilslam_module name)
     target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${CMAKE_SOURCE_DIR}/src>
                                                 $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/vilslam>)
     target_link_libraries(${target} PUBLIC ${ARG_DEPS})
+    vilslam_use_pch(${target})
   else()
     add_library(${target} INTERFACE)
     target_include_directories(${target} INTERFACE $<BUILD_INTERFACE:${CMAKE_SOURCE_DIR}/src>

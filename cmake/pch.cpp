@@ -1,0 +1,1 @@
+// Compiles cmake/modules.cmake's precompiled headers (vilslam_pch) once for every target that reuses them.
