@@ -1,12 +1,28 @@
 # Precompiled headers (VILSLAM_PCH): the standard, Eigen and OpenCV core headers most files include, parsed
-# once into vilslam_pch and reused by every module, the CLI and the benchmarks; the tests add GoogleTest's
-# (tests/CMakeLists.txt). A header the PCH holds still needs its own #include where it is used.
+# once into vilslam_pch and reused by every module, the CLI and the benchmarks; the tests reuse
+# vilslam_test_pch, the same plus GoogleTest's (tests/CMakeLists.txt). A header the PCH holds still needs its
+# own #include where it is used.
+option(VILSLAM_PCH "Precompile the common headers (cmake/modules.cmake)" ON)
 set(VILSLAM_PCH_HEADERS <algorithm> <cmath> <cstdint> <filesystem> <fstream> <functional> <map> <memory>
     <optional> <sstream> <stdexcept> <string> <vector> <Eigen/Core> <Eigen/Geometry> <opencv2/core.hpp>)
-# vilslam_use_pch(<target>): <target> reuses vilslam_pch when VILSLAM_PCH is on.
+# vilslam_add_pch(<name> [DEPS <targets...>] [HEADERS <headers...>]): the object target <name> that compiles
+# VILSLAM_PCH_HEADERS and HEADERS with the library's compile flags and those of DEPS.
+function(vilslam_add_pch name)
+  if(VILSLAM_PCH)
+    cmake_parse_arguments(ARG "" "" "DEPS;HEADERS" ${ARGN})
+    add_library(${name} OBJECT ${CMAKE_SOURCE_DIR}/cmake/pch.cpp)
+    target_link_libraries(${name} PRIVATE Eigen3::Eigen opencv_core yaml-cpp spdlog::spdlog ${ARG_DEPS})
+    target_precompile_headers(${name} PRIVATE ${VILSLAM_PCH_HEADERS} ${ARG_HEADERS})
+  endif()
+endfunction()
+# vilslam_use_pch(<target> [<pch>]): <target> reuses <pch> (default vilslam_pch) when VILSLAM_PCH is on.
 function(vilslam_use_pch target)
   if(VILSLAM_PCH)
-    target_precompile_headers(${target} REUSE_FROM vilslam_pch)
+    set(pch vilslam_pch)
+    if(ARGC GREATER 1)
+      set(pch ${ARGV1})
+    endif()
+    target_precompile_headers(${target} REUSE_FROM ${pch})
   endif()
 endfunction()
 
