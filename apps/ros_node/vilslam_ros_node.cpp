@@ -100,8 +100,10 @@ std::vector<std::uint8_t> wire_bytes(const topic_tools::ShapeShifter& message) {
 
 class Node {
  public:
-  Node(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const RigCalibration& calib, const OfflineRunConfig& config)
-      : odometry_(private_nh.advertise<nav_msgs::Odometry>("odometry", 400)),
+  Node(ros::NodeHandle& nh, ros::NodeHandle& private_nh, const RigCalibration& calib, const OfflineRunConfig& config,
+       int image_bits)
+      : image_bits_(image_bits),
+        odometry_(private_nh.advertise<nav_msgs::Odometry>("odometry", 400)),
         camera_state_(private_nh.advertise<nav_msgs::Odometry>("camera_state", 20)),
         lidar_pose_(private_nh.advertise<geometry_msgs::PoseStamped>("lidar_pose", 20)),
         path_pub_(private_nh.advertise<nav_msgs::Path>("path", 2)),
@@ -210,7 +212,7 @@ class Node {
         input_.image(camera, image.header.stamp_ns, grey_from_ros_compressed_image(image));
       } else {
         const RosImage image = decode_ros_image(bytes);
-        input_.image(camera, image.header.stamp_ns, grey_from_ros_image(image));
+        input_.image(camera, image.header.stamp_ns, grey_from_ros_image(image, image_bits_));
       }
     });
   }
@@ -219,6 +221,7 @@ class Node {
     guarded("lidar0", [&] { input_.scan(scan_from_point_cloud2(decode_ros_point_cloud2(wire_bytes(*m)))); });
   }
 
+  int image_bits_;  // significant bits of 16-bit images (--image-bits)
   ros::Publisher odometry_, camera_state_, lidar_pose_, path_pub_, sparse_map_, tf_;
   nav_msgs::Path path_;  // the LiDAR thread's only
   std::atomic<bool> publishing_{true};
@@ -238,6 +241,11 @@ int run(int argc, char** argv) {
   app.add_option("--config", config_path, "Run YAML (config/run_default.yaml); default: built-in")->check(CLI::ExistingFile);
   app.add_option("--mode", mode, "Pipeline mode")->check(CLI::IsMember({"vio", "vil", "lidar-only"}))->capture_default_str();
   app.add_option("--out", out_dir, "On shutdown, write the run's outputs here as `vilslam run` does");
+  int image_bits = 16;
+  app.add_option("--image-bits", image_bits,
+                 "Significant bits of 16-bit images (mono16, 16UC1, bayer_*16): 2^bits - 1 becomes white")
+      ->check(CLI::Range(8, 16))
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -252,7 +260,7 @@ int run(int argc, char** argv) {
       ROS_WARN("vilslam: time_offset.enabled is for recorded runs; live, the rig's cam_time_offset_ns is used");
       config.time_offset.enabled = false;
     }
-    Node node(nh, private_nh, read_rig_yaml(rig_path), config);
+    Node node(nh, private_nh, read_rig_yaml(rig_path), config, image_bits);
     ROS_INFO("vilslam: running (mode %s)", mode.c_str());
     ros::spin();  // until Ctrl-C or rosnode kill
     const OfflineRunResult result = node.finish();

@@ -7,8 +7,9 @@ namespace vilslam::cli {
 std::shared_ptr<DatasetOptionArgs> add_dataset_options(CLI::App& app) {
   auto args = std::make_shared<DatasetOptionArgs>();
   app.add_option("--calib", args->calibration_path,
-                 "Rig YAML calibration replacing the dataset's (docs/formats.md; a ROS bag's default: its name with "
-                 ".rig.yaml instead of .bag)");
+                 "Rig YAML replacing the dataset's calibration, or a Kalibr camchain (camchain-imucam[-NAME].yaml, "
+                 "with imu[-NAME].yaml and lidar-imu[-NAME].yaml beside it) replacing what its files hold "
+                 "(docs/formats.md; a ROS bag's default: its name with .rig.yaml instead of .bag)");
   app.add_option("--topic", args->topics,
                  "ROS bag only: ROLE=TOPIC, role cam0, cam1, imu0, lidar0 or groundtruth (default: found by type)")
       ->allow_extra_args(false);

@@ -68,13 +68,27 @@ void read_lidar_imu_yaml(const std::string& path, RigCalibration& calib) {
   lidar.max_range_m = optional_double(node, "max_range_m", path, lidar.max_range_m);
 }
 
-bool apply_kalibr_folder(const std::string& folder, RigCalibration& calib) {
+KalibrFiles kalibr_files_beside(const std::string& camchain_path) {
   namespace fs = std::filesystem;
-  const fs::path dir(folder);
-  const fs::path camchain = dir / kKalibrCamchainFile;
-  if (!fs::exists(camchain)) return false;
-  const fs::path imu = dir / kKalibrImuFile;
-  const RigCalibration kalibr = read_kalibr_camchain(camchain.string(), fs::exists(imu) ? imu.string() : "");
+  const fs::path camchain(camchain_path);
+  // camchain-imucam.yaml -> imu.yaml; camchain-imucam-NAME.yaml -> imu-NAME.yaml (likewise lidar-imu).
+  const std::string name = camchain.filename().string();
+  const std::string stem = "camchain-imucam";
+  const std::string suffix = name.rfind(stem, 0) == 0 ? name.substr(stem.size()) : ".yaml";
+  const auto beside = [&](const std::string& base) {
+    const fs::path p = camchain.parent_path() / (base + suffix);
+    return fs::exists(p) ? p.string() : std::string();
+  };
+  return {camchain_path, beside("imu"), beside("lidar-imu")};
+}
+
+bool is_kalibr_camchain(const std::string& path) {
+  const YAML::Node root = load_yaml_file(path);
+  return root.IsMap() && root["cam0"] && root["cam0"].IsMap() && !root["imu"] && !root["cam0"]["T_I_C"];
+}
+
+void apply_kalibr_files(const KalibrFiles& files, RigCalibration& calib) {
+  const RigCalibration kalibr = read_kalibr_camchain(files.camchain, files.imu);
   const double rates_hz[2] = {calib.cam0.rate_hz, calib.cam1.rate_hz};
   calib.cam0 = kalibr.cam0;
   calib.cam1 = kalibr.cam1;
@@ -83,10 +97,34 @@ bool apply_kalibr_folder(const std::string& folder, RigCalibration& calib) {
   calib.T_I_C0 = kalibr.T_I_C0;
   calib.T_I_C1 = kalibr.T_I_C1;
   calib.cam_time_offset_ns = kalibr.cam_time_offset_ns;
-  if (fs::exists(imu)) calib.imu = kalibr.imu;
-  const fs::path lidar = dir / kLidarImuFile;
-  if (fs::exists(lidar)) read_lidar_imu_yaml(lidar.string(), calib);
-  validate_calibration(calib, camchain.string());
+  if (!files.imu.empty()) calib.imu = kalibr.imu;
+  if (!files.lidar.empty()) read_lidar_imu_yaml(files.lidar, calib);
+  validate_calibration(calib, files.camchain);
+}
+
+std::map<std::string, std::string> kalibr_topics(const KalibrFiles& files) {
+  std::map<std::string, std::string> topics;
+  const auto take = [&](const YAML::Node& node, const std::string& role, const std::string& file) {
+    if (!node || !node.IsMap() || !node["rostopic"]) return;
+    if (!node["rostopic"].IsScalar()) throw InputError(file, "rostopic of " + role + " is not a topic name");
+    topics[role] = node["rostopic"].Scalar();
+  };
+  const YAML::Node camchain = load_yaml_file(files.camchain);
+  take(camchain["cam0"], "cam0", files.camchain);
+  take(camchain["cam1"], "cam1", files.camchain);
+  if (!files.imu.empty()) {
+    const YAML::Node imu = load_yaml_file(files.imu);
+    take(imu.IsMap() && imu["imu0"] ? imu["imu0"] : imu, "imu0", files.imu);
+  }
+  if (!files.lidar.empty()) take(load_yaml_file(files.lidar), "lidar0", files.lidar);
+  return topics;
+}
+
+bool apply_kalibr_folder(const std::string& folder, RigCalibration& calib) {
+  namespace fs = std::filesystem;
+  const fs::path camchain = fs::path(folder) / kKalibrCamchainFile;
+  if (!fs::exists(camchain)) return false;
+  apply_kalibr_files(kalibr_files_beside(camchain.string()), calib);
   spdlog::info("calibration from Kalibr files in {}", folder);
   return true;
 }

@@ -1,6 +1,7 @@
 // Layout detection: a ROS1 bag (a .bag file), the project's format (rig.yaml or mav0/lidar0), EuRoC ASL
 // (mav0/), KITTI odometry; then, for folders, Kalibr calibration files in the folder when there are any, and
-// last a rig YAML the caller names (`--calib`), which replaces them all.
+// last a rig YAML the caller names (`--calib`), which replaces them all, or a Kalibr camchain it names, which
+// replaces what its files hold.
 #include <filesystem>
 
 #include "common/error.h"
@@ -31,8 +32,13 @@ DatasetIndex index_dataset(const std::string& root, const DatasetOptions& option
   // A user's Kalibr calibration next to the data replaces the layout's (docs/formats.md).
   if (!bag && apply_kalibr_folder(root, index.calibration)) index.summary.calibration = "kalibr";
   if (!bag && !options.calibration_path.empty()) {
-    index.calibration = read_rig_yaml(options.calibration_path);
-    index.summary.calibration = "file " + options.calibration_path;
+    if (is_kalibr_camchain(options.calibration_path)) {  // on top of the layout's, as Kalibr files in the folder
+      apply_kalibr_files(kalibr_files_beside(options.calibration_path), index.calibration);
+      index.summary.calibration = "kalibr " + options.calibration_path;
+    } else {
+      index.calibration = read_rig_yaml(options.calibration_path);
+      index.summary.calibration = "file " + options.calibration_path;
+    }
   }
   finalize_summary(index);
   return index;

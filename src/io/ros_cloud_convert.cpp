@@ -1,5 +1,7 @@
 // sensor_msgs/PointCloud2 to and from LidarScan, for the field layouts of the common LiDAR drivers.
 #include <algorithm>
+#include <array>
+#include <cstring>
 #include <cmath>
 #include <optional>
 
@@ -19,9 +21,13 @@ const RosPointField* find_field(const RosPointCloud2& cloud, const std::string& 
   return nullptr;
 }
 
-double read_value(const std::uint8_t* p, std::uint8_t datatype) {
-  auto get = [p](auto value) {
-    std::memcpy(&value, p, sizeof value);
+// One field's value, stored in the cloud's byte order (is_bigendian), as a double.
+double read_value(const std::uint8_t* p, std::uint8_t datatype, bool big_endian) {
+  auto get = [p, big_endian](auto value) {
+    std::array<std::uint8_t, sizeof value> bytes;
+    std::memcpy(bytes.data(), p, sizeof value);
+    if (big_endian) std::reverse(bytes.begin(), bytes.end());
+    std::memcpy(&value, bytes.data(), sizeof value);
     return static_cast<double>(value);
   };
   switch (static_cast<RosPointType>(datatype)) {
@@ -55,7 +61,6 @@ std::optional<TimeField> time_field(const RosPointCloud2& cloud) {
 
 // Checks the geometry of the cloud and of each field against point_step.
 void check_layout(const RosPointCloud2& cloud) {
-  if (cloud.is_bigendian) throw WireError("big-endian PointCloud2 is not supported");
   // An empty cloud is 0 x 0 or 1 x 0 (PCL, the drivers); rows of no points (and no bytes) could number 4e9.
   if (cloud.width == 0 && cloud.height > 1) {
     throw WireError("PointCloud2 of width 0 has " + std::to_string(cloud.height) + " rows");
@@ -97,6 +102,7 @@ LidarScan scan_from_point_cloud2(const RosPointCloud2& cloud) {
   const RosPointField* fi = find_field(cloud, "intensity");
   const RosPointField* fr = find_field(cloud, "ring");
   const std::optional<TimeField> ft = time_field(cloud);
+  const bool big_endian = cloud.is_bigendian != 0;
   const double stamp_s = ns_to_s(cloud.header.stamp_ns);
 
   // Absolute timestamps: seconds (Hesai) or nanoseconds (livox_ros_driver2), told apart by the stamp.
@@ -107,14 +113,14 @@ LidarScan scan_from_point_cloud2(const RosPointCloud2& cloud) {
     for (std::uint32_t col = 0; col < cloud.width; ++col) {
       const std::uint8_t* p = cloud.data.data() + std::size_t{row} * cloud.row_step + std::size_t{col} * cloud.point_step;
       LidarPoint point;
-      point.x = static_cast<float>(read_value(p + fx->offset, fx->datatype));
-      point.y = static_cast<float>(read_value(p + fy->offset, fy->datatype));
-      point.z = static_cast<float>(read_value(p + fz->offset, fz->datatype));
+      point.x = static_cast<float>(read_value(p + fx->offset, fx->datatype, big_endian));
+      point.y = static_cast<float>(read_value(p + fy->offset, fy->datatype, big_endian));
+      point.z = static_cast<float>(read_value(p + fz->offset, fz->datatype, big_endian));
       if (!std::isfinite(point.x) || !std::isfinite(point.y) || !std::isfinite(point.z)) continue;
       if (point.x == 0 && point.y == 0 && point.z == 0) continue;
-      if (fi) point.intensity = static_cast<float>(read_value(p + fi->offset, fi->datatype));
+      if (fi) point.intensity = static_cast<float>(read_value(p + fi->offset, fi->datatype, big_endian));
       if (fr) {
-        const double ring = read_value(p + fr->offset, fr->datatype);
+        const double ring = read_value(p + fr->offset, fr->datatype, big_endian);
         if (!(ring >= 0 && ring <= 65535) || ring != std::floor(ring)) {
           throw WireError("PointCloud2 'ring' field holds " + std::to_string(ring) + ", not an integer in 0..65535");
         }
@@ -122,7 +128,7 @@ LidarScan scan_from_point_cloud2(const RosPointCloud2& cloud) {
       }
       double t_s = 0;
       if (ft) {
-        const double v = read_value(p + ft->field->offset, ft->field->datatype);
+        const double v = read_value(p + ft->field->offset, ft->field->datatype, big_endian);
         if (!std::isfinite(v)) throw WireError("PointCloud2 '" + ft->field->name + "' field holds a non-finite value");
         switch (ft->unit) {
           case TimeUnit::kRelativeSeconds: t_s = v; break;

@@ -8,9 +8,12 @@
 
 namespace vilslam {
 
-// sensor_msgs/Image with encoding mono8, rgb8 or bgr8 (any row padding) as an 8-bit grey image
-// (colour: cv::cvtColor, which maps R = G = B = v to v exactly).
-cv::Mat grey_from_ros_image(const RosImage& image);
+// sensor_msgs/Image as an 8-bit grey image (any row padding; docs/formats.md lists the encodings): colour by
+// cv::cvtColor (R = G = B = v gives v exactly), Bayer mosaics demosaiced to grey, 16-bit samples (either
+// byte order) scaled so that 2^significant_bits - 1 becomes 255, rounded, larger samples clipped.
+cv::Mat grey_from_ros_image(const RosImage& image, int significant_bits = 16);
+// Bits a 16-bit image's samples use (8 to 16: the smallest b >= 8 with max sample < 2^b); 0 for 8-bit encodings.
+int ros_image_significant_bits(const RosImage& image);
 // Cheap check of the same message without converting: encoding, sizes, data length.
 void check_ros_image(const RosImage& image);
 // sensor_msgs/CompressedImage (PNG or JPEG; the format string is informative) decoded to 8-bit grey.

@@ -3,13 +3,16 @@
 // Times are the messages' header stamps; each stream's stamps must increase strictly.
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
+#include <optional>
 
 #include "common/error.h"
 #include "io/calibration_io.h"
 #include "io/dataset_index.h"
 #include "io/euroc_tables.h"
+#include "io/kalibr_calibration.h"
 #include "io/ros_convert.h"
 #include "io/ros_wire.h"
 #include "io/rosbag_file.h"
@@ -75,8 +78,8 @@ class BagPayloads : public PayloadStore {
   StereoFrame stereo(std::size_t i) override {
     StereoFrame frame;
     frame.t_ns = stereo_ordinals[i].t_ns;
-    frame.left = image(topics_.cam0, stereo_ordinals[i].left, calib_.cam0);
-    frame.right = image(topics_.cam1, stereo_ordinals[i].right, calib_.cam1);
+    frame.left = image(topics_.cam0, stereo_ordinals[i].left, calib_.cam0, left_bits);
+    frame.right = image(topics_.cam1, stereo_ordinals[i].right, calib_.cam1, right_bits);
     return frame;
   }
 
@@ -96,13 +99,15 @@ class BagPayloads : public PayloadStore {
   };
   std::vector<StereoOrdinals> stereo_ordinals;
   std::vector<std::size_t> scan_ordinals;
+  // Significant bits of each camera topic's 16-bit images (scale_bits of ImageTopicInfo).
+  int left_bits = 16, right_bits = 16;
 
  private:
-  cv::Mat image(const std::string& topic, std::size_t ordinal, const CameraIntrinsics& cam) {
+  cv::Mat image(const std::string& topic, std::size_t ordinal, const CameraIntrinsics& cam, int bits) {
     const auto bytes = bag_->message(topic, ordinal);
     const bool raw = datatype_of(*bag_, topic) == kRosImage.datatype;
     const cv::Mat grey = about_message(bag_->path(), topic, ordinal, [&] {
-      return raw ? grey_from_ros_image(decode_ros_image(bytes))
+      return raw ? grey_from_ros_image(decode_ros_image(bytes), bits)
                  : grey_from_ros_compressed_image(decode_ros_compressed_image(bytes));
     });
     check_image_size(bag_->path(), topic, grey.cols, grey.rows, cam);
@@ -119,9 +124,15 @@ std::string default_calibration_path(const std::string& bag_path) {
   return p.replace_extension(".rig.yaml").string();
 }
 
-// The calibration file's optional `ros_topics` map (role: topic), under the options' topics.
-std::map<std::string, std::string> topic_choices(const std::string& calib_path, const DatasetOptions& options) {
+// The calibration file's topics under the options' topics: a rig YAML's optional `ros_topics` map (role:
+// topic), or the `rostopic` keys of Kalibr's files.
+std::map<std::string, std::string> topic_choices(const std::string& calib_path, const KalibrFiles* kalibr,
+                                                 const DatasetOptions& options) {
   std::map<std::string, std::string> topics = options.topics;
+  if (kalibr) {
+    for (const auto& [role, topic] : kalibr_topics(*kalibr)) topics.emplace(role, topic);  // an option given wins
+    return topics;
+  }
   const YAML::Node node = YAML::LoadFile(calib_path)["ros_topics"];
   if (!node) return topics;
   if (!node.IsMap()) throw InputError(calib_path, "ros_topics must be a map of role: topic");
@@ -162,9 +173,19 @@ std::vector<GroundTruthState> read_poses(const BagIn& bag, const std::string& to
   return gt;
 }
 
+// What indexing learnt of a raw image topic: the first message's encoding and, for 16-bit images, the
+// significant bits of the whole topic (one scale for every frame, so brightness does not flicker).
+struct ImageTopicInfo {
+  std::string encoding;  // empty for compressed images
+  int bits = 0;          // 0: no 16-bit image
+  // What `info` lists after the type: "mono8", or "mono16/12" for 16-bit images scaled from 12 bits.
+  std::string listed() const { return bits > 0 ? " " + encoding + "/" + std::to_string(bits) : encoding.empty() ? "" : " " + encoding; }
+  int scale_bits() const { return bits > 0 ? bits : 16; }
+};
+
 // Header stamps of an image topic (raw images are checked for encoding and size here).
 std::vector<ImageRow> index_images(const BagIn& bag, const std::string& topic, const CameraIntrinsics& cam,
-                                   std::map<TimeNs, std::size_t>& ordinal_of) {
+                                   std::map<TimeNs, std::size_t>& ordinal_of, ImageTopicInfo& info) {
   const RosMessageType& type = image_type_of(bag, topic);
   require_md5(bag, topic, type);
   std::vector<ImageRow> rows;
@@ -174,6 +195,8 @@ std::vector<ImageRow> index_images(const BagIn& bag, const std::string& topic, c
       const RosImage image = decode_ros_image(bytes);
       check_ros_image(image);
       check_image_size(bag.path(), topic, static_cast<int>(image.width), static_cast<int>(image.height), cam);
+      if (k == 0) info.encoding = image.encoding;
+      info.bits = std::max(info.bits, ros_image_significant_bits(image));
       return image.header.stamp_ns;
     });
     require_increasing(bag.path(), topic, rows.empty() ? 0 : rows.back().t_ns, t_ns, k);
@@ -192,12 +215,25 @@ DatasetIndex index_rosbag(const std::string& bag_path, const DatasetOptions& opt
   const std::string calib_path =
       options.calibration_path.empty() ? default_calibration_path(bag_path) : options.calibration_path;
   if (!fs::exists(calib_path)) {
-    throw InputError(bag_path, "no calibration: " + calib_path + " does not exist (give a rig YAML with --calib)");
+    throw InputError(bag_path, "no calibration: " + calib_path +
+                                   " does not exist (give a rig YAML or a Kalibr camchain with --calib)");
   }
-  index.calibration = read_rig_yaml(calib_path);
+  std::optional<KalibrFiles> kalibr;
+  if (is_kalibr_camchain(calib_path)) {
+    // A bag carries no calibration to fall back on: the IMU noise must come from Kalibr's imu file too.
+    kalibr = kalibr_files_beside(calib_path);
+    if (kalibr->imu.empty()) {
+      throw InputError(calib_path, "a Kalibr camchain for a bag needs Kalibr's IMU noise file beside it (imu.yaml, "
+                                   "or imu-NAME.yaml for camchain-imucam-NAME.yaml)");
+    }
+    apply_kalibr_files(*kalibr, index.calibration);
+    index.summary.calibration = "kalibr " + calib_path;
+  } else {
+    index.calibration = read_rig_yaml(calib_path);
+  }
 
   auto bag = std::make_unique<BagIn>(bag_path);
-  const BagTopics topics = choose_bag_topics(*bag, topic_choices(calib_path, options));
+  const BagTopics topics = choose_bag_topics(*bag, topic_choices(calib_path, kalibr ? &*kalibr : nullptr, options));
   auto& listed = index.summary.topics;
   index.imu = read_imu(*bag, topics.imu0);
   listed.push_back("imu0 " + topics.imu0 + " " + kRosImu.datatype);
@@ -211,12 +247,15 @@ DatasetIndex index_rosbag(const std::string& bag_path, const DatasetOptions& opt
   if (!topics.cam0.empty()) {
     index.has_cameras = true;
     std::map<TimeNs, std::size_t> left_of, right_of;
-    const auto left = index_images(in, topics.cam0, index.calibration.cam0, left_of);
-    const auto right = index_images(in, topics.cam1, index.calibration.cam1, right_of);
+    ImageTopicInfo left_info, right_info;
+    const auto left = index_images(in, topics.cam0, index.calibration.cam0, left_of, left_info);
+    const auto right = index_images(in, topics.cam1, index.calibration.cam1, right_of, right_info);
     index.stereo = pair_stereo(left, right, index.summary.problems);
     for (const StereoEntry& e : index.stereo) store->stereo_ordinals.push_back({e.t_ns, left_of.at(e.t_ns), right_of.at(e.t_ns)});
-    listed.push_back("cam0 " + topics.cam0 + " " + datatype_of(in, topics.cam0));
-    listed.push_back("cam1 " + topics.cam1 + " " + datatype_of(in, topics.cam1));
+    store->left_bits = left_info.scale_bits();
+    store->right_bits = right_info.scale_bits();
+    listed.push_back("cam0 " + topics.cam0 + " " + datatype_of(in, topics.cam0) + left_info.listed());
+    listed.push_back("cam1 " + topics.cam1 + " " + datatype_of(in, topics.cam1) + right_info.listed());
   }
   if (!topics.lidar0.empty()) {
     if (!index.calibration.has_lidar) {

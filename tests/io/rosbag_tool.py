@@ -4,8 +4,9 @@
   rosbag_tool.py write DATASET OUT.bag [--left ENC] [--right ENC] [--lidar LAYOUT] [--compression C]
                    [--no-groundtruth]
       A dataset in vilslam's folder format as a bag, with ROS's message classes and writer.
-      ENC: mono8 | rgb8 | bgr8 | png (sensor_msgs/CompressedImage) | any other name (written with mono8
-      bytes, to make a bag with a wrong encoding). LAYOUT: velodyne | ouster | hesai | livox | livox_offset.
+      ENC: mono8 | rgb8 | bgr8 | mono16 (12 significant bits, the 8-bit value's bits repeated: v << 4 | v >> 4,
+      little-endian) | mono16be (the same, big-endian) | png (sensor_msgs/CompressedImage) | any other name
+      (written with mono8 bytes, to make a bag with a wrong encoding). LAYOUT: velodyne | ouster | hesai | livox | livox_offset.
       C: the chunks' compression, none | bz2 | lz4 (rosbag record --bz2 / --lz4).
   rosbag_tool.py dump BAG OUT.json
       Topics, types, counts, stamps and decoded values of a bag, as JSON.
@@ -91,6 +92,10 @@ def image_message(folder, t_ns, name, encoding, frame):
         if encoding in ("rgb8", "bgr8"):
             msg.step = 3 * width
             msg.data = bytes(v for g in grey for v in (g, g, g))
+        elif encoding in ("mono16", "mono16be"):
+            msg.encoding, msg.is_bigendian, msg.step = "mono16", int(encoding == "mono16be"), 2 * width
+            order = ">" if msg.is_bigendian else "<"
+            msg.data = struct.pack(order + "%dH" % len(grey), *((g << 4) | (g >> 4) for g in grey))
         else:
             msg.step, msg.data = width, grey
     header(msg, t_ns, frame)

@@ -72,8 +72,8 @@ TEST_F(RosbagBadInput, UnindexedBag) {
 }
 
 TEST_F(RosbagBadInput, WrongImageEncoding) {
-  const std::string bag = python_bag("bayer", "--left bayer_rggb8");
-  expect_refused(bag, {"/cam0/image_raw", "bayer_rggb8", "mono8, rgb8, bgr8"});
+  const std::string bag = python_bag("yuv", "--left yuv422");
+  expect_refused(bag, {"/cam0/image_raw", "yuv422", "mono8", "mono16", "bayer_rggb8"});
 }
 
 TEST_F(RosbagBadInput, MissingTopic) {

@@ -36,10 +36,12 @@ TEST_F(RosbagRead, EveryEncodingAndLayoutReadsAsTheFolder) {
       {"hesai", "png", "mono8", 5e-7, true, "lz4"},      // float64 absolute seconds (~2.4e-7 s resolution at 1.6e9 s)
       {"livox", "bgr8", "rgb8", 5e-7, false, "none"},    // float64 absolute ns (256 ns resolution at 1.6e18), no ring
       {"livox_offset", "mono8", "mono8", 2e-9, false, "lz4"},  // uint32 ns since the stamp, no ring
+      // 12-bit samples in 16-bit images, either byte order: scaled from the topic's 12 bits back to the grey.
+      {"velodyne", "mono16", "mono16be", 0.0, true, "none"},
   };
   for (const LayoutCase& c : cases) {
     SCOPED_TRACE(c.layout);
-    const std::string bag = python_bag(c.layout, std::string("--lidar ") + c.layout + " --left " + c.left + " --right " +
+    const std::string bag = python_bag(std::string(c.layout) + "_" + c.left, std::string("--lidar ") + c.layout + " --left " + c.left + " --right " +
                                                      c.right + " --compression " + c.compression);
     const auto from_bag = open_dataset(bag);
     const auto from_folder = open_dataset(folder_);
@@ -66,7 +68,7 @@ TEST_F(RosbagRead, EveryEncodingAndLayoutReadsAsTheFolder) {
 }
 
 TEST_F(RosbagRead, InfoListsTopicsTypesAndLayout) {
-  const std::string bag = python_bag("ouster", "--lidar ouster --left png --right mono8", false);
+  const std::string bag = python_bag("ouster", "--lidar ouster --left png --right mono16", false);
   const fs::path json = dir_ / "info.json";
   const auto r = test::run_cli("info " + bag + " --calib " + folder_ + "/rig.yaml --deep --json " + json.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -81,7 +83,7 @@ TEST_F(RosbagRead, InfoListsTopicsTypesAndLayout) {
   EXPECT_EQ(topics, (std::vector<std::string>{"imu0 /imu0 sensor_msgs/Imu",
                                               "groundtruth /ground_truth geometry_msgs/PoseStamped",
                                               "cam0 /cam0/image_raw/compressed sensor_msgs/CompressedImage",
-                                              "cam1 /cam1/image_raw sensor_msgs/Image",
+                                              "cam1 /cam1/image_raw sensor_msgs/Image mono16/12",
                                               "lidar0 /points_raw sensor_msgs/PointCloud2 ouster"}));
 }
 
