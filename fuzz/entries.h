@@ -27,7 +27,7 @@ Outcome scan_bin(const std::uint8_t* data, std::size_t size);    // byte 0: KITT
 Outcome trajectory(const std::uint8_t* data, std::size_t size);  // byte 0: TUM, KITTI, EuRoC
 Outcome loops_csv(const std::uint8_t* data, std::size_t size);
 Outcome vocabulary(const std::uint8_t* data, std::size_t size);
-Outcome ros_messages(const std::uint8_t* data, std::size_t size);  // byte 0: message type
+Outcome ros_messages(const std::uint8_t* data, std::size_t size);  // byte 0: message type, ROS1 or CDR
 Outcome rosbag(const std::uint8_t* data, std::size_t size);
 Outcome map_file(const std::uint8_t* data, std::size_t size);  // byte 0: which file of a saved map
 

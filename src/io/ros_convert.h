@@ -23,6 +23,10 @@ RosImage ros_image_from_grey(const cv::Mat& grey, TimeNs t_ns, const std::string
 
 // sensor_msgs/Imu as a sample (orientation and covariances unused); a non-finite rate or force is a WireError.
 ImuSample imu_sample_from_ros(const RosImu& imu);
+// A sample as sensor_msgs/Imu (frame imu0, orientation_covariance[0] = -1: no orientation).
+RosImu ros_imu_from_sample(const ImuSample& sample);
+// A ground-truth state's pose T_W_I as geometry_msgs/PoseStamped (frame world).
+RosPoseStamped ros_pose_from_state(const GroundTruthState& state);
 
 // The driver layout a PointCloud2 follows, named after its time field (docs/formats.md):
 // "velodyne" (time, s since the stamp), "ouster" (t, ns since the stamp), "hesai" (timestamp, absolute,

@@ -23,6 +23,9 @@ class WireError : public std::runtime_error {
 
 class WireReader {
  public:
+  static constexpr bool kHeaderSeq = true;       // std_msgs/Header starts with uint32 seq
+  static constexpr std::size_t kMaxPadding = 0;   // a message ends with its last field
+
   WireReader(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
 
   template <typename T>

@@ -15,13 +15,31 @@
 #include "io/kalibr_calibration.h"
 #include "io/ros_convert.h"
 #include "io/ros_wire.h"
-#include "io/rosbag_file.h"
+#include "io/message_log.h"
+#include "io/ros2_messages.h"
 #include "io/rosbag_topics.h"
 
 namespace vilslam {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The decoders of a log's serialization.
+struct Decoders {
+  RosImage (*image)(const std::vector<std::uint8_t>&);
+  RosCompressedImage (*compressed_image)(const std::vector<std::uint8_t>&);
+  RosImu (*imu)(const std::vector<std::uint8_t>&);
+  RosPointCloud2 (*point_cloud2)(const std::vector<std::uint8_t>&);
+  RosPoseStamped (*pose_stamped)(const std::vector<std::uint8_t>&);
+};
+
+const Decoders& decoders_of(const MessageLog& log) {
+  static const Decoders ros1{decode_ros_image, decode_ros_compressed_image, decode_ros_imu, decode_ros_point_cloud2,
+                             decode_ros_pose_stamped};
+  static const Decoders cdr{decode_cdr_image, decode_cdr_compressed_image, decode_cdr_imu, decode_cdr_point_cloud2,
+                            decode_cdr_pose_stamped};
+  return log.wire() == BagWire::kCdr ? cdr : ros1;
+}
 
 // Runs f, turning a WireError about one message into an InputError naming the bag, topic and message.
 template <typename F>
@@ -41,7 +59,7 @@ void require_increasing(const std::string& bag, const std::string& topic, TimeNs
   }
 }
 
-std::string datatype_of(const BagIn& bag, const std::string& topic) {
+std::string datatype_of(const MessageLog& bag, const std::string& topic) {
   for (const BagTopic& t : bag.topics()) {
     if (t.topic == topic) return t.datatype;
   }
@@ -49,7 +67,7 @@ std::string datatype_of(const BagIn& bag, const std::string& topic) {
 }
 
 // The md5 of a topic's connection must be the one of the type vilslam decodes.
-void require_md5(const BagIn& bag, const std::string& topic, const RosMessageType& type) {
+void require_md5(const MessageLog& bag, const std::string& topic, const RosMessageType& type) {
   for (const BagTopic& t : bag.topics()) {
     if (t.topic == topic && t.md5sum != type.md5sum && t.md5sum != "*") {
       throw InputError(bag.path(), "topic " + topic + ": " + t.datatype + " with definition MD5 " + t.md5sum +
@@ -58,7 +76,7 @@ void require_md5(const BagIn& bag, const std::string& topic, const RosMessageTyp
   }
 }
 
-const RosMessageType& image_type_of(const BagIn& bag, const std::string& topic) {
+const RosMessageType& image_type_of(const MessageLog& bag, const std::string& topic) {
   return datatype_of(bag, topic) == kRosImage.datatype ? kRosImage : kRosCompressedImage;
 }
 
@@ -72,7 +90,7 @@ void check_image_size(const std::string& bag, const std::string& topic, int widt
 
 class BagPayloads : public PayloadStore {
  public:
-  BagPayloads(std::unique_ptr<BagIn> bag, BagTopics topics, RigCalibration calib)
+  BagPayloads(std::unique_ptr<MessageLog> bag, BagTopics topics, RigCalibration calib)
       : bag_(std::move(bag)), topics_(std::move(topics)), calib_(std::move(calib)) {}
 
   StereoFrame stereo(std::size_t i) override {
@@ -87,10 +105,10 @@ class BagPayloads : public PayloadStore {
     const std::size_t ordinal = scan_ordinals[i];
     const auto bytes = bag_->message(topics_.lidar0, ordinal);
     return about_message(bag_->path(), topics_.lidar0, ordinal,
-                         [&] { return scan_from_point_cloud2(decode_ros_point_cloud2(bytes)); });
+                         [&] { return scan_from_point_cloud2(decoders_of(*bag_).point_cloud2(bytes)); });
   }
 
-  BagIn& bag() { return *bag_; }
+  MessageLog& bag() { return *bag_; }
 
   // Entry i of the index's stereo (scans) list: the message ordinals on the cam0 and cam1 (lidar0) topics.
   struct StereoOrdinals {
@@ -107,20 +125,22 @@ class BagPayloads : public PayloadStore {
     const auto bytes = bag_->message(topic, ordinal);
     const bool raw = datatype_of(*bag_, topic) == kRosImage.datatype;
     const cv::Mat grey = about_message(bag_->path(), topic, ordinal, [&] {
-      return raw ? grey_from_ros_image(decode_ros_image(bytes), bits)
-                 : grey_from_ros_compressed_image(decode_ros_compressed_image(bytes));
+      return raw ? grey_from_ros_image(decoders_of(*bag_).image(bytes), bits)
+                 : grey_from_ros_compressed_image(decoders_of(*bag_).compressed_image(bytes));
     });
     check_image_size(bag_->path(), topic, grey.cols, grey.rows, cam);
     return grey;
   }
 
-  std::unique_ptr<BagIn> bag_;
+  std::unique_ptr<MessageLog> bag_;
   BagTopics topics_;
   RigCalibration calib_;
 };
 
+// run1.bag, run1.db3 and the ROS 2 bag folder run1/ -> run1.rig.yaml beside them.
 std::string default_calibration_path(const std::string& bag_path) {
-  fs::path p(bag_path);
+  fs::path p = fs::path(bag_path).lexically_normal();
+  if (p.filename().empty()) p = p.parent_path();
   return p.replace_extension(".rig.yaml").string();
 }
 
@@ -143,22 +163,22 @@ std::map<std::string, std::string> topic_choices(const std::string& calib_path, 
   return topics;
 }
 
-std::vector<ImuSample> read_imu(const BagIn& bag, const std::string& topic) {
+std::vector<ImuSample> read_imu(const MessageLog& bag, const std::string& topic) {
   require_md5(bag, topic, kRosImu);
   std::vector<ImuSample> imu;
   bag.for_each(topic, [&](std::size_t k, const std::vector<std::uint8_t>& bytes) {
-    const ImuSample s = about_message(bag.path(), topic, k, [&] { return imu_sample_from_ros(decode_ros_imu(bytes)); });
+    const ImuSample s = about_message(bag.path(), topic, k, [&] { return imu_sample_from_ros(decoders_of(bag).imu(bytes)); });
     require_increasing(bag.path(), topic, imu.empty() ? 0 : imu.back().t_ns, s.t_ns, k);
     imu.push_back(s);
   });
   return imu;
 }
 
-std::vector<GroundTruthState> read_poses(const BagIn& bag, const std::string& topic) {
+std::vector<GroundTruthState> read_poses(const MessageLog& bag, const std::string& topic) {
   require_md5(bag, topic, kRosPoseStamped);
   std::vector<GroundTruthState> gt;
   bag.for_each(topic, [&](std::size_t k, const std::vector<std::uint8_t>& bytes) {
-    const RosPoseStamped m = about_message(bag.path(), topic, k, [&] { return decode_ros_pose_stamped(bytes); });
+    const RosPoseStamped m = about_message(bag.path(), topic, k, [&] { return decoders_of(bag).pose_stamped(bytes); });
     const auto& q = m.orientation_xyzw;
     const Quat quat(q[3], q[0], q[1], q[2]);
     if (!(quat.norm() > 0.5 && quat.norm() < 2)) {
@@ -184,15 +204,15 @@ struct ImageTopicInfo {
 };
 
 // Header stamps of an image topic (raw images are checked for encoding and size here).
-std::vector<ImageRow> index_images(const BagIn& bag, const std::string& topic, const CameraIntrinsics& cam,
+std::vector<ImageRow> index_images(const MessageLog& bag, const std::string& topic, const CameraIntrinsics& cam,
                                    std::map<TimeNs, std::size_t>& ordinal_of, ImageTopicInfo& info) {
   const RosMessageType& type = image_type_of(bag, topic);
   require_md5(bag, topic, type);
   std::vector<ImageRow> rows;
   bag.for_each(topic, [&](std::size_t k, const std::vector<std::uint8_t>& bytes) {
     const TimeNs t_ns = about_message(bag.path(), topic, k, [&] {
-      if (&type == &kRosCompressedImage) return decode_ros_compressed_image(bytes).header.stamp_ns;
-      const RosImage image = decode_ros_image(bytes);
+      if (&type == &kRosCompressedImage) return decoders_of(bag).compressed_image(bytes).header.stamp_ns;
+      const RosImage image = decoders_of(bag).image(bytes);
       check_ros_image(image);
       check_image_size(bag.path(), topic, static_cast<int>(image.width), static_cast<int>(image.height), cam);
       if (k == 0) info.encoding = image.encoding;
@@ -210,7 +230,7 @@ std::vector<ImageRow> index_images(const BagIn& bag, const std::string& topic, c
 
 DatasetIndex index_rosbag(const std::string& bag_path, const DatasetOptions& options) {
   DatasetIndex index;
-  index.summary.format = "rosbag";
+  index.summary.format = is_ros2_bag(bag_path) ? "rosbag2" : "rosbag";
   index.summary.path = bag_path;
   const std::string calib_path =
       options.calibration_path.empty() ? default_calibration_path(bag_path) : options.calibration_path;
@@ -232,7 +252,7 @@ DatasetIndex index_rosbag(const std::string& bag_path, const DatasetOptions& opt
     index.calibration = read_rig_yaml(calib_path);
   }
 
-  auto bag = std::make_unique<BagIn>(bag_path);
+  std::unique_ptr<MessageLog> bag = open_message_log(bag_path);
   const BagTopics topics = choose_bag_topics(*bag, topic_choices(calib_path, kalibr ? &*kalibr : nullptr, options));
   auto& listed = index.summary.topics;
   index.imu = read_imu(*bag, topics.imu0);
@@ -243,7 +263,7 @@ DatasetIndex index_rosbag(const std::string& bag_path, const DatasetOptions& opt
   }
 
   auto store = std::make_shared<BagPayloads>(std::move(bag), topics, index.calibration);
-  const BagIn& in = store->bag();
+  const MessageLog& in = store->bag();
   if (!topics.cam0.empty()) {
     index.has_cameras = true;
     std::map<TimeNs, std::size_t> left_of, right_of;
@@ -265,7 +285,7 @@ DatasetIndex index_rosbag(const std::string& bag_path, const DatasetOptions& opt
     std::string layout;
     in.for_each(topics.lidar0, [&](std::size_t k, const std::vector<std::uint8_t>& bytes) {
       const auto [scan, name] = about_message(bag_path, topics.lidar0, k, [&] {
-        const RosPointCloud2 cloud = decode_ros_point_cloud2(bytes);
+        const RosPointCloud2 cloud = decoders_of(in).point_cloud2(bytes);
         return std::make_pair(scan_from_point_cloud2(cloud), point_cloud2_layout(cloud));
       });
       if (k == 0) layout = name;

@@ -9,30 +9,6 @@
 #include "io/rosbag_file.h"
 
 namespace vilslam {
-namespace {
-
-RosImu ros_imu(const ImuSample& s) {
-  RosImu m;
-  m.header.stamp_ns = s.t_ns;
-  m.header.frame_id = "imu0";
-  m.orientation_covariance[0] = -1;  // sensor_msgs/Imu: -1 marks "no orientation estimate"
-  m.angular_velocity = {s.gyro_rad_s.x(), s.gyro_rad_s.y(), s.gyro_rad_s.z()};
-  m.linear_acceleration = {s.accel_m_s2.x(), s.accel_m_s2.y(), s.accel_m_s2.z()};
-  return m;
-}
-
-RosPoseStamped ros_pose(const GroundTruthState& s) {
-  RosPoseStamped m;
-  m.header.stamp_ns = s.t_ns;
-  m.header.frame_id = "world";
-  const Vec3& p = s.T_W_I.translation();
-  const Quat& q = s.T_W_I.quat();
-  m.position = {p.x(), p.y(), p.z()};
-  m.orientation_xyzw = {q.x(), q.y(), q.z(), q.w()};
-  return m;
-}
-
-}  // namespace
 
 std::string bag_calibration_path(const std::string& bag_path) {
   return std::filesystem::path(bag_path).replace_extension(".rig.yaml").string();
@@ -50,7 +26,7 @@ BagExportCounts export_bag(DatasetReader& reader, const std::string& bag_path, c
   reader.rewind();
   while (const auto event = reader.next()) {
     if (const auto* imu = std::get_if<ImuSample>(&event->data)) {
-      bag.write(topic.at("imu0"), kRosImu, imu->t_ns, encode(ros_imu(*imu)));
+      bag.write(topic.at("imu0"), kRosImu, imu->t_ns, encode(ros_imu_from_sample(*imu)));
       ++counts.imu_samples;
     } else if (const auto* frame = std::get_if<StereoFrame>(&event->data)) {
       bag.write(topic.at("cam0"), kRosImage, frame->t_ns, encode(ros_image_from_grey(frame->left, frame->t_ns, "cam0")));
@@ -60,7 +36,7 @@ BagExportCounts export_bag(DatasetReader& reader, const std::string& bag_path, c
       bag.write(topic.at("lidar0"), kRosPointCloud2, scan->t_ns, encode(velodyne_point_cloud2(*scan, "lidar0")));
       ++counts.lidar_scans;
     } else if (const auto* gt = std::get_if<GroundTruthState>(&event->data); gt && options.groundtruth) {
-      bag.write(topic.at("groundtruth"), kRosPoseStamped, gt->t_ns, encode(ros_pose(*gt)));
+      bag.write(topic.at("groundtruth"), kRosPoseStamped, gt->t_ns, encode(ros_pose_from_state(*gt)));
       ++counts.groundtruth_poses;
     }
   }

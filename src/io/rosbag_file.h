@@ -10,32 +10,26 @@
 #include <vector>
 
 #include "common/time.h"
+#include "io/message_log.h"
 #include "io/ros_messages.h"
 
 namespace vilslam {
 
-struct BagTopic {
-  std::string topic;
-  std::string datatype;
-  std::string md5sum;
-  std::size_t messages = 0;
-};
-
-class BagIn {
+class BagIn : public MessageLog {
  public:
   explicit BagIn(const std::string& path);
-  ~BagIn();
+  ~BagIn() override;
   BagIn(const BagIn&) = delete;
   BagIn& operator=(const BagIn&) = delete;
 
-  const std::string& path() const;
+  const std::string& path() const override;
   // Every topic, sorted by name (a topic with connections of two types is an InputError).
-  const std::vector<BagTopic>& topics() const;
-  // Visits the messages of a topic in bag order: visit(ordinal, serialized bytes).
+  const std::vector<BagTopic>& topics() const override;
   void for_each(const std::string& topic,
-                const std::function<void(std::size_t, const std::vector<std::uint8_t>&)>& visit) const;
-  // The bytes of message `ordinal` of a topic; cheap when each topic is asked in increasing order.
-  std::vector<std::uint8_t> message(const std::string& topic, std::size_t ordinal);
+                const std::function<void(std::size_t, const std::vector<std::uint8_t>&)>& visit) const override;
+  // Cheap when each topic is asked in increasing order.
+  std::vector<std::uint8_t> message(const std::string& topic, std::size_t ordinal) override;
+  BagWire wire() const override { return BagWire::kRos1; }
 
  private:
   struct Impl;

@@ -20,7 +20,7 @@ std::string list(const std::vector<std::string>& names) {
   return out.empty() ? "none" : out;
 }
 
-std::vector<std::string> topics_where(const BagIn& bag, const std::function<bool(const std::string&)>& accept) {
+std::vector<std::string> topics_where(const MessageLog& bag, const std::function<bool(const std::string&)>& accept) {
   std::vector<std::string> names;
   for (const BagTopic& t : bag.topics()) {
     if (accept(t.datatype)) names.push_back(t.topic);
@@ -28,12 +28,12 @@ std::vector<std::string> topics_where(const BagIn& bag, const std::function<bool
   return names;
 }
 
-std::vector<std::string> topics_of_type(const BagIn& bag, const char* datatype) {
+std::vector<std::string> topics_of_type(const MessageLog& bag, const char* datatype) {
   return topics_where(bag, [datatype](const std::string& d) { return d == datatype; });
 }
 
 // The override of a role, checked to be in the bag with an accepted type; "" when not overridden.
-std::string given_topic(const BagIn& bag, const std::map<std::string, std::string>& overrides, const std::string& role,
+std::string given_topic(const MessageLog& bag, const std::map<std::string, std::string>& overrides, const std::string& role,
                         const std::vector<std::string>& of_type, const std::string& type_names) {
   const auto it = overrides.find(role);
   if (it == overrides.end()) return {};
@@ -51,7 +51,7 @@ std::string given_topic(const BagIn& bag, const std::map<std::string, std::strin
 }
 
 // The one topic of a type (or none); several are an InputError asking for the role's override.
-std::string only_topic(const BagIn& bag, const std::string& role, const std::vector<std::string>& of_type,
+std::string only_topic(const MessageLog& bag, const std::string& role, const std::vector<std::string>& of_type,
                        const std::string& type_name) {
   if (of_type.size() > 1) {
     throw InputError(bag.path(), std::to_string(of_type.size()) + " " + type_name + " topics (" + list(of_type) +
@@ -64,7 +64,7 @@ bool mentions(const std::string& topic, const char* word) { return topic.find(wo
 
 }  // namespace
 
-BagTopics choose_bag_topics(const BagIn& bag, const std::map<std::string, std::string>& overrides) {
+BagTopics choose_bag_topics(const MessageLog& bag, const std::map<std::string, std::string>& overrides) {
   for (const auto& [role, topic] : overrides) {
     if (role != "cam0" && role != "cam1" && role != "imu0" && role != "lidar0" && role != "groundtruth") {
       throw std::invalid_argument("unknown topic role '" + role + "' (cam0, cam1, imu0, lidar0, groundtruth)");

@@ -4,7 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "io/rosbag_file.h"
+#include "io/message_log.h"
+#include "io/ros_messages.h"
 
 namespace vilslam {
 
@@ -20,6 +21,6 @@ struct BagTopics {
 // of its type; two image topics are the stereo pair in name order (cam0 the first, unless the names say
 // right/left). An unknown role is std::invalid_argument; a topic not in the bag, of the wrong type, or an
 // ambiguous choice is an InputError naming the bag and the topics.
-BagTopics choose_bag_topics(const BagIn& bag, const std::map<std::string, std::string>& overrides);
+BagTopics choose_bag_topics(const MessageLog& bag, const std::map<std::string, std::string>& overrides);
 
 }  // namespace vilslam
