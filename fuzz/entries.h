@@ -29,6 +29,7 @@ Outcome loops_csv(const std::uint8_t* data, std::size_t size);
 Outcome vocabulary(const std::uint8_t* data, std::size_t size);
 Outcome ros_messages(const std::uint8_t* data, std::size_t size);  // byte 0: message type, ROS1 or CDR
 Outcome rosbag(const std::uint8_t* data, std::size_t size);
+Outcome mcap(const std::uint8_t* data, std::size_t size);
 Outcome map_file(const std::uint8_t* data, std::size_t size);  // byte 0: which file of a saved map
 
 // The entry of a target by name (the test's table); nullptr for an unknown name.

@@ -13,7 +13,8 @@ Entry find_entry(const char* name) {
                   {"cloud_ply", cloud_ply},   {"scan_bin", scan_bin},
                   {"trajectory", trajectory}, {"loops_csv", loops_csv},
                   {"vocabulary", vocabulary}, {"ros_messages", ros_messages},
-                  {"rosbag", rosbag},         {"map_file", map_file}};
+                  {"rosbag", rosbag},         {"map_file", map_file},
+                  {"mcap", mcap}};
   for (const auto& e : kEntries) {
     if (std::strcmp(e.name, name) == 0) return e.entry;
   }

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "io/calibration_io.h"
+
 namespace vilslam::fuzz {
 namespace {
 
@@ -44,6 +46,14 @@ RigCalibration small_rig() {
   }
   c.has_lidar = true;
   return c;
+}
+
+std::string small_rig_yaml_file() {
+  static const std::string path = [] {
+    const std::string text = rig_yaml_text(small_rig());
+    return write_temp_file("rig.yaml", reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
+  }();
+  return path;
 }
 
 }  // namespace vilslam::fuzz

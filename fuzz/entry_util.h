@@ -30,5 +30,7 @@ std::string write_temp_file(const std::string& name, const std::uint8_t* data, s
 
 // A valid rig with tiny cameras and a LiDAR, for targets that need one beside the fuzzed file.
 RigCalibration small_rig();
+// small_rig() as a rig YAML in the temporary folder (written once per process), for the bag targets.
+std::string small_rig_yaml_file();
 
 }  // namespace vilslam::fuzz

@@ -1,22 +1,13 @@
 // ROS1 bag files as datasets (io/dataset.h): the bag is indexed and every event read, as `vilslam run`
 // does, with a fixed small rig as its calibration (a bag carries none).
 #include "entry_util.h"
-#include "io/calibration_io.h"
 #include "io/dataset.h"
 
 namespace vilslam::fuzz {
-namespace {
-
-std::string write_rig_yaml() {
-  const std::string text = rig_yaml_text(small_rig());
-  return write_temp_file("rig.yaml", reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
-}
-
-}  // namespace
 
 Outcome rosbag(const std::uint8_t* data, std::size_t size) {
   static DatasetOptions options;
-  if (options.calibration_path.empty()) options.calibration_path = write_rig_yaml();
+  if (options.calibration_path.empty()) options.calibration_path = small_rig_yaml_file();
   const std::string path = write_temp_file("data.bag", data, size);
   return outcome_of([&] {
     const auto reader = open_dataset(path, options);

@@ -1,7 +1,7 @@
-// Layout detection: a ROS1 bag (a .bag file), a ROS 2 bag (a folder with metadata.yaml, or a .db3 file), the
-// project's format (rig.yaml or mav0/lidar0), EuRoC ASL (mav0/), KITTI odometry; then, for folders, Kalibr
-// calibration files in the folder when there are any, and last a rig YAML the caller names (`--calib`), which
-// replaces them all, or a Kalibr camchain it names, which replaces what its files hold.
+// Layout detection: a ROS1 bag (a .bag file), a ROS 2 bag (a folder with metadata.yaml, or a .db3 or .mcap
+// file), the project's format (rig.yaml or mav0/lidar0), EuRoC ASL (mav0/), KITTI odometry; then, for folders,
+// Kalibr calibration files in the folder when there are any, and last a rig YAML the caller names (`--calib`),
+// which replaces them all, or a Kalibr camchain it names, which replaces what its files hold.
 #include <filesystem>
 
 #include "common/error.h"
@@ -17,7 +17,7 @@ DatasetIndex index_dataset(const std::string& root, const DatasetOptions& option
   const fs::path dir(root);
   if (!fs::exists(dir)) throw InputError(root, "dataset folder does not exist");
   const bool bag = (fs::is_regular_file(dir) && dir.extension() == ".bag") || is_ros2_bag(root);
-  if (!fs::is_directory(dir) && !bag) throw InputError(root, "not a folder, a ROS1 .bag file nor a ROS 2 .db3 file");
+  if (!fs::is_directory(dir) && !bag) throw InputError(root, "not a folder, a ROS1 .bag file nor a ROS 2 .db3 or .mcap file");
   DatasetIndex index;
   if (bag) {
     index = index_rosbag(root, options);

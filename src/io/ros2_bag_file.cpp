@@ -1,14 +1,12 @@
 #include "io/ros2_bag_file.h"
 
 #include <sqlite3.h>
-#include <yaml-cpp/yaml.h>
 
 #include <filesystem>
 #include <map>
 
 #include "common/error.h"
-#include "io/ros2_messages.h"
-#include "io/rosbag_file.h"
+#include "io/ros2_messages.h"  // ros1_type_name
 
 namespace vilslam {
 namespace {
@@ -60,78 +58,23 @@ std::vector<std::uint8_t> blob(sqlite3_stmt* s, int column) {
   return p ? std::vector<std::uint8_t>(p, p + n) : std::vector<std::uint8_t>{};
 }
 
-// The .db3 files of a bag folder, in metadata.yaml's order; a storage or compression vilslam cannot read is
-// refused here.
-std::vector<std::string> files_of_folder(const std::string& folder) {
-  const fs::path metadata = fs::path(folder) / "metadata.yaml";
-  YAML::Node info;
-  try {
-    info = YAML::LoadFile(metadata.string())["rosbag2_bagfile_information"];
-  } catch (const YAML::Exception& e) {
-    throw InputError(metadata.string(), std::string("cannot read: ") + e.what());
-  }
-  if (!info || !info.IsMap()) throw InputError(metadata.string(), "no rosbag2_bagfile_information section");
-  const std::string storage = info["storage_identifier"] ? info["storage_identifier"].as<std::string>() : "";
-  if (storage != "sqlite3") {
-    throw InputError(metadata.string(), "storage '" + storage + "' is not supported, only sqlite3 (convert with "
-                                        "`ros2 bag convert` and a storage_id: sqlite3 output)");
-  }
-  if (info["compression_format"] && !info["compression_format"].as<std::string>().empty()) {
-    throw InputError(metadata.string(), "compressed bag (" + info["compression_format"].as<std::string>() +
-                                            ") is not supported: decompress it with `ros2 bag convert`");
-  }
-  const YAML::Node paths = info["relative_file_paths"];
-  if (!paths || !paths.IsSequence() || paths.size() == 0) throw InputError(metadata.string(), "no relative_file_paths");
-  std::vector<std::string> files;
-  for (const auto& p : paths) files.push_back((fs::path(folder) / p.as<std::string>()).string());
-  return files;
-}
-
 }  // namespace
 
-bool is_ros2_bag(const std::string& path) {
-  const fs::path p(path);
-  if (fs::is_directory(p)) return fs::exists(p / "metadata.yaml");
-  return fs::is_regular_file(p) && p.extension() == ".db3";
-}
-
-std::unique_ptr<MessageLog> open_message_log(const std::string& path) {
-  if (is_ros2_bag(path)) return std::make_unique<Ros2Bag>(path);
-  return std::make_unique<BagIn>(path);
-}
-
-struct Ros2Bag::Impl {
-  std::string path;
-  std::vector<std::string> files;
-  std::vector<Db> dbs;
-  std::vector<BagTopic> topics;
-  std::map<std::string, std::vector<std::int64_t>> topic_ids;  // topic -> its id in each file (-1: none)
-  // topic -> (file, row id) of each message in log order, filled by the first for_each of the topic.
-  mutable std::map<std::string, std::vector<std::pair<std::size_t, std::int64_t>>> rows;
-
-  void visit_rows(const std::string& topic,
-                  const std::function<void(std::size_t, std::int64_t, sqlite3_stmt*)>& visit) const {
-    const auto ids = topic_ids.find(topic);
-    if (ids == topic_ids.end()) throw InputError(path, "topic " + topic + " is not in the bag");
-    for (std::size_t f = 0; f < files.size(); ++f) {
-      if (ids->second[f] < 0) continue;
-      Stmt s = prepare(dbs[f].get(), files[f],
-                       "SELECT id, data FROM messages WHERE topic_id = ? ORDER BY timestamp, id");
-      sqlite3_bind_int64(s.get(), 1, ids->second[f]);
-      while (step(dbs[f].get(), s.get(), files[f])) visit(f, sqlite3_column_int64(s.get(), 0), s.get());
-    }
-  }
-};
-
-Ros2Bag::Ros2Bag(const std::string& path) : impl_(std::make_unique<Impl>()) {
-  Impl& d = *impl_;
-  d.path = path;
-  d.files = fs::is_directory(path) ? files_of_folder(path) : std::vector<std::string>{path};
+std::unique_ptr<MessageLog> open_sqlite_bag(const std::string& path, const std::vector<std::string>& files) {
+  struct Storage {
+    std::vector<std::string> files;
+    std::vector<Db> dbs;
+    std::vector<std::pair<std::size_t, std::int64_t>> rows;  // (file, row id) of each message
+  };
+  auto storage = std::make_shared<Storage>();
+  storage->files = files;
   std::map<std::string, BagTopic> by_name;
-  for (std::size_t f = 0; f < d.files.size(); ++f) {
-    const std::string& file = d.files[f];
-    d.dbs.push_back(open_db(file));
-    sqlite3* db = d.dbs.back().get();
+  std::map<std::string, std::vector<std::size_t>> ids;
+  for (std::size_t f = 0; f < files.size(); ++f) {
+    const std::string& file = files[f];
+    storage->dbs.push_back(open_db(file));
+    sqlite3* db = storage->dbs.back().get();
+    std::map<std::int64_t, std::string> topic_of;  // this file's topic ids
     Stmt topics = prepare(db, file, "SELECT id, name, type, serialization_format FROM topics");
     while (step(db, topics.get(), file)) {
       const std::string name = text(topics.get(), 1), type = ros1_type_name(text(topics.get(), 2));
@@ -141,53 +84,30 @@ Ros2Bag::Ros2Bag(const std::string& path) : impl_(std::make_unique<Impl>()) {
       if (!t.datatype.empty() && t.datatype != type) {
         throw InputError(path, "topic " + name + " has messages of two types, " + t.datatype + " and " + type);
       }
-      t.topic = name;
-      t.datatype = type;
-      t.md5sum = "*";
-      auto& ids = d.topic_ids[name];
-      ids.resize(d.files.size(), -1);
-      ids[f] = sqlite3_column_int64(topics.get(), 0);
+      t = {name, type, "*", t.messages};
+      topic_of[sqlite3_column_int64(topics.get(), 0)] = name;
     }
-    Stmt counts = prepare(db, file, "SELECT topic_id, COUNT(*) FROM messages GROUP BY topic_id");
-    while (step(db, counts.get(), file)) {
-      for (auto& [name, ids] : d.topic_ids) {
-        if (ids[f] == sqlite3_column_int64(counts.get(), 0)) by_name[name].messages += sqlite3_column_int64(counts.get(), 1);
+    Stmt messages = prepare(db, file, "SELECT id, topic_id FROM messages ORDER BY timestamp, id");
+    while (step(db, messages.get(), file)) {
+      const auto topic = topic_of.find(sqlite3_column_int64(messages.get(), 1));
+      if (topic == topic_of.end()) {
+        throw InputError(file, "message row " + std::to_string(sqlite3_column_int64(messages.get(), 0)) + " has an unknown topic id");
       }
+      ++by_name[topic->second].messages;
+      ids[topic->second].push_back(storage->rows.size());
+      storage->rows.emplace_back(f, sqlite3_column_int64(messages.get(), 0));
     }
   }
-  for (auto& [name, t] : by_name) d.topics.push_back(t);
-}
-
-Ros2Bag::~Ros2Bag() = default;
-
-const std::string& Ros2Bag::path() const { return impl_->path; }
-const std::vector<BagTopic>& Ros2Bag::topics() const { return impl_->topics; }
-
-void Ros2Bag::for_each(const std::string& topic,
-                       const std::function<void(std::size_t, const std::vector<std::uint8_t>&)>& visit) const {
-  std::vector<std::pair<std::size_t, std::int64_t>> rows;
-  impl_->visit_rows(topic, [&](std::size_t file, std::int64_t id, sqlite3_stmt* s) {
-    rows.emplace_back(file, id);
-    visit(rows.size() - 1, blob(s, 1));
+  std::vector<BagTopic> topics;
+  for (auto& [name, t] : by_name) topics.push_back(t);
+  return std::make_unique<IndexedLog>(path, std::move(topics), std::move(ids), [storage](std::size_t id) {
+    const auto [f, row] = storage->rows[id];
+    sqlite3* db = storage->dbs[f].get();
+    Stmt s = prepare(db, storage->files[f], "SELECT data FROM messages WHERE id = ?");
+    sqlite3_bind_int64(s.get(), 1, row);
+    if (!step(db, s.get(), storage->files[f])) throw InputError(storage->files[f], "message row " + std::to_string(row) + " vanished");
+    return blob(s.get(), 0);
   });
-  impl_->rows[topic] = std::move(rows);
-}
-
-std::vector<std::uint8_t> Ros2Bag::message(const std::string& topic, std::size_t ordinal) {
-  if (!impl_->rows.count(topic)) {
-    auto& rows = impl_->rows[topic];
-    impl_->visit_rows(topic, [&](std::size_t file, std::int64_t id, sqlite3_stmt*) { rows.emplace_back(file, id); });
-  }
-  const auto& rows = impl_->rows.at(topic);
-  if (ordinal >= rows.size()) throw InputError(impl_->path, "topic " + topic + " has no message " + std::to_string(ordinal));
-  const auto [file, id] = rows[ordinal];
-  sqlite3* db = impl_->dbs[file].get();
-  Stmt s = prepare(db, impl_->files[file], "SELECT data FROM messages WHERE id = ?");
-  sqlite3_bind_int64(s.get(), 1, id);
-  if (!step(db, s.get(), impl_->files[file])) {
-    throw InputError(impl_->files[file], "message row " + std::to_string(id) + " of topic " + topic + " vanished");
-  }
-  return blob(s.get(), 0);
 }
 
 }  // namespace vilslam

@@ -93,15 +93,26 @@ inline void sql(sqlite3* db, const std::string& statement) {
   }
 }
 
-// The reader's events as a bag folder dir (metadata.yaml, dir/NAME_i.db3); topics as export-bag names them.
-inline void write_ros2_bag(DatasetReader& reader, const std::filesystem::path& dir, const Ros2BagOptions& options = {}) {
-  struct Message {
-    std::string topic;
-    TimeNs t_ns;
-    std::vector<std::uint8_t> data;
-  };
-  const bool be = options.big_endian;
-  std::vector<Message> messages;
+struct Ros2Message {
+  std::string topic;
+  TimeNs t_ns;
+  std::vector<std::uint8_t> data;
+};
+
+// Topic and ROS 2 type of each stream, as export-bag names the topics.
+inline const std::vector<std::pair<std::string, std::string>>& ros2_topics() {
+  static const std::vector<std::pair<std::string, std::string>> topics = {
+      {"/imu0", "sensor_msgs/msg/Imu"},
+      {"/cam0/image_raw", "sensor_msgs/msg/Image"},
+      {"/cam1/image_raw", "sensor_msgs/msg/Image"},
+      {"/points_raw", "sensor_msgs/msg/PointCloud2"},
+      {"/ground_truth", "geometry_msgs/msg/PoseStamped"}};
+  return topics;
+}
+
+// The reader's events as CDR messages, in time order.
+inline std::vector<Ros2Message> ros2_messages(DatasetReader& reader, bool be) {
+  std::vector<Ros2Message> messages;
   reader.rewind();
   while (const auto e = reader.next()) {
     if (const auto* imu = std::get_if<ImuSample>(&e->data)) {
@@ -115,12 +126,13 @@ inline void write_ros2_bag(DatasetReader& reader, const std::filesystem::path& d
       messages.push_back({"/ground_truth", gt->t_ns, cdr_bytes(ros_pose_from_state(*gt), be)});
     }
   }
-  const std::vector<std::pair<std::string, std::string>> topics = {
-      {"/imu0", "sensor_msgs/msg/Imu"},
-      {"/cam0/image_raw", "sensor_msgs/msg/Image"},
-      {"/cam1/image_raw", "sensor_msgs/msg/Image"},
-      {"/points_raw", "sensor_msgs/msg/PointCloud2"},
-      {"/ground_truth", "geometry_msgs/msg/PoseStamped"}};
+  return messages;
+}
+
+// The reader's events as a bag folder dir (metadata.yaml, dir/NAME_i.db3).
+inline void write_ros2_bag(DatasetReader& reader, const std::filesystem::path& dir, const Ros2BagOptions& options = {}) {
+  const std::vector<Ros2Message> messages = ros2_messages(reader, options.big_endian);
+  const auto& topics = ros2_topics();
   std::filesystem::create_directories(dir);
   const std::string name = dir.filename().string();
   std::string files_yaml;
@@ -150,7 +162,7 @@ inline void write_ros2_bag(DatasetReader& reader, const std::filesystem::path& d
     sqlite3_stmt* insert = nullptr;
     sqlite3_prepare_v2(db, "INSERT INTO messages (topic_id, timestamp, data) VALUES (?, ?, ?)", -1, &insert, nullptr);
     for (std::size_t i = f * per_file; i < std::min(messages.size(), (f + 1) * per_file); ++i) {
-      const Message& m = messages[i];
+      const Ros2Message& m = messages[i];
       sqlite3_bind_int(insert, 1, id_of.at(m.topic));
       sqlite3_bind_int64(insert, 2, m.t_ns);
       sqlite3_bind_blob(insert, 3, m.data.data(), static_cast<int>(m.data.size()), SQLITE_TRANSIENT);

@@ -1,6 +1,7 @@
-// ROS 2 bags (rosbag2 sqlite3 storage, CDR) written from the synthetic dataset with eProsima Fast CDR read
-// back event for event as that folder, in either byte order and split over files; what the reader cannot
-// read is refused naming the file.
+// ROS 2 bags (rosbag2's sqlite3 and MCAP storage, CDR) written from the synthetic dataset with eProsima Fast
+// CDR read back event for event as that folder: sqlite3 in either byte order and split over files, MCAP with
+// top-level messages or chunks (uncompressed, zstd, LZ4) stored out of order; what the readers cannot read is
+// refused naming the file.
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
@@ -10,6 +11,7 @@
 #include "common/error.h"
 #include "io/dataset.h"
 #include "io/message_log.h"
+#include "mcap_writer.h"
 #include "ros2_bag_writer.h"
 #include "rosbag_test_util.h"
 #include "test_util.h"
@@ -88,8 +90,8 @@ TEST_F(Ros2BagRead, RefusesWhatItCannotRead) {
     std::ofstream(copy / "metadata.yaml") << text;
     return copy.string();
   };
-  expect_refused(metadata_saying("mcap", "storage_identifier: sqlite3", "storage_identifier: mcap"),
-                 {"metadata.yaml", "storage 'mcap' is not supported"});
+  expect_refused(metadata_saying("rosbag_v2", "storage_identifier: sqlite3", "storage_identifier: rosbag_v2"),
+                 {"metadata.yaml", "storage 'rosbag_v2' is not supported"});
   expect_refused(metadata_saying("zstd", "compression_format: \"\"", "compression_format: zstd"),
                  {"metadata.yaml", "compressed bag (zstd)"});
   expect_refused(metadata_saying("gone", "good_0.db3", "missing_0.db3"), {"missing_0.db3", "does not exist"});
@@ -112,13 +114,65 @@ TEST_F(Ros2BagRead, RefusesWhatItCannotRead) {
   expect_refused(cut.string(), {"cut.db3", "topic /imu0, message 0", "truncated"});
 }
 
-TEST(Ros2BagDetect, FoldersWithMetadataAndDb3Files) {
+TEST_F(Ros2BagRead, McapReadsAsTheFolderWithOrWithoutCompressedChunks) {
+  struct Case {
+    const char* name;
+    test::McapOptions options;
+  };
+  const Case cases[] = {{"top_level", {0, "", false}},
+                        {"chunks", {7, "", true}},
+                        {"zstd", {7, "zstd", true}},
+                        {"lz4", {40, "lz4", false}}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const fs::path file = dir_ / (std::string(c.name) + ".mcap");
+    test::write_mcap(*open_dataset(folder_), file, c.options);
+    fs::copy_file(fs::path(folder_) / "rig.yaml", dir_ / (std::string(c.name) + ".rig.yaml"));
+    const auto from_bag = open_dataset(file.string());
+    EXPECT_EQ(from_bag->summary().format, "rosbag2");
+    EXPECT_EQ(test::expect_same_events(*open_dataset(folder_), *from_bag, tolerance()), 100u + 10u + 5u + 50u);
+  }
+  // The same file as a bag folder whose metadata says mcap.
+  const fs::path folder = dir_ / "mcap_bag";
+  fs::create_directories(folder);
+  fs::copy_file(dir_ / "zstd.mcap", folder / "mcap_bag_0.mcap");
+  std::ofstream(folder / "metadata.yaml") << "rosbag2_bagfile_information:\n  storage_identifier: mcap\n"
+                                             "  relative_file_paths: [mcap_bag_0.mcap]\n";
+  fs::copy_file(fs::path(folder_) / "rig.yaml", dir_ / "mcap_bag.rig.yaml");
+  EXPECT_EQ(test::expect_same_events(*open_dataset(folder_), *open_dataset(folder.string()), tolerance()),
+            100u + 10u + 5u + 50u);
+}
+
+TEST_F(Ros2BagRead, McapRefusesMalformedFiles) {
+  const fs::path good = dir_ / "good.mcap";
+  test::write_mcap(*open_dataset(folder_), good, {7, "zstd", false});
+  std::ifstream in(good, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  const auto variant = [&](const std::string& name, const std::string& content) {
+    const fs::path file = dir_ / (name + ".mcap");
+    std::ofstream(file, std::ios::binary) << content;
+    fs::copy_file(fs::path(folder_) / "rig.yaml", dir_ / (name + ".rig.yaml"));
+    return file.string();
+  };
+  expect_refused(variant("magic", "GIF89a" + bytes.substr(6)), {"magic.mcap", "not an MCAP file"});
+  expect_refused(variant("cut", bytes.substr(0, bytes.size() / 2)), {"cut.mcap", "truncated"});
+  // The first chunk's compression string renamed in place to one no reader knows.
+  std::string renamed = bytes;
+  const std::size_t at = renamed.find(std::string("\x04\0\0\0zstd", 8));
+  ASSERT_NE(at, std::string::npos);
+  renamed.replace(at + 4, 4, "zstx");
+  expect_refused(variant("zstx", renamed), {"zstx.mcap", "compression 'zstx' is not supported"});
+}
+
+TEST(Ros2BagDetect, FoldersWithMetadataDb3AndMcapFiles) {
   const fs::path dir = test::temp_dir();
   EXPECT_FALSE(is_ros2_bag(dir.string()));
   std::ofstream(dir / "metadata.yaml") << "x: 1\n";
   EXPECT_TRUE(is_ros2_bag(dir.string()));
   std::ofstream(dir / "a.db3") << "";
   EXPECT_TRUE(is_ros2_bag((dir / "a.db3").string()));
+  std::ofstream(dir / "a.mcap") << "";
+  EXPECT_TRUE(is_ros2_bag((dir / "a.mcap").string()));
   EXPECT_FALSE(is_ros2_bag((dir / "metadata.yaml").string()));
 }
 
