@@ -1,7 +1,6 @@
 #include "io/mcap_file.h"
 
 #include <lz4frame.h>
-#include <zstd.h>
 
 #include <algorithm>
 #include <cstring>
@@ -12,6 +11,7 @@
 #include "common/error.h"
 #include "io/ros2_messages.h"
 #include "io/ros_wire.h"
+#include "io/zstd_util.h"
 
 namespace vilslam {
 namespace {
@@ -78,10 +78,10 @@ std::vector<std::uint8_t> decompress(const ChunkLocation& chunk, std::vector<std
   }
   if (chunk.compression == "lz4") return lz4_frame_decompress(records, chunk.uncompressed_size);
   if (chunk.compression == "zstd") {
-    std::vector<std::uint8_t> out(chunk.uncompressed_size);
-    const std::size_t n = ZSTD_decompress(out.data(), out.size(), records.data(), records.size());
-    if (ZSTD_isError(n)) throw WireError(std::string("zstd: ") + ZSTD_getErrorName(n));
-    if (n != out.size()) throw WireError("zstd chunk holds " + std::to_string(n) + " bytes, not uncompressed_size");
+    std::vector<std::uint8_t> out = zstd_decompress(records.data(), records.size(), chunk.uncompressed_size);
+    if (out.size() != chunk.uncompressed_size) {
+      throw WireError("zstd chunk holds " + std::to_string(out.size()) + " bytes, not uncompressed_size");
+    }
     return out;
   }
   throw WireError("chunk compression '" + chunk.compression + "' is not supported (none, lz4, zstd)");
@@ -216,7 +216,7 @@ struct McapStorage {
 
 }  // namespace
 
-std::unique_ptr<MessageLog> open_mcap_bag(const std::string& path, const std::vector<std::string>& files) {
+std::unique_ptr<IndexedLog> open_mcap_bag(const std::string& path, const std::vector<std::string>& files) {
   auto storage = std::make_shared<McapStorage>();
   McapStorage& d = *storage;
   d.path = path;

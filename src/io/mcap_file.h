@@ -17,6 +17,6 @@ namespace vilslam {
 // listed by their ROS1 names, md5sum "*"; a channel whose messages are not CDR is listed with its encoding
 // before the type ("json:std_msgs/String"). A topic's messages come in the order of their log times, then of
 // the records in the files.
-std::unique_ptr<MessageLog> open_mcap_bag(const std::string& path, const std::vector<std::string>& files);
+std::unique_ptr<IndexedLog> open_mcap_bag(const std::string& path, const std::vector<std::string>& files);
 
 }  // namespace vilslam

@@ -48,12 +48,20 @@ class IndexedLog : public MessageLog {
   std::vector<std::uint8_t> message(const std::string& topic, std::size_t ordinal) override;
   BagWire wire() const override { return BagWire::kCdr; }
 
+  // Each message fetched is a zstd frame (rosbag2's compression_mode MESSAGE): decompress it.
+  void decompress_messages() { zstd_messages_ = true; }
+  // Holds resource (e.g. the bag's decompressed files) as long as the log, and drops it after the storage.
+  void keep(std::shared_ptr<void> resource) { kept_.push_back(std::move(resource)); }
+
  private:
   const std::vector<std::size_t>& ids_of(const std::string& topic) const;
+  std::vector<std::uint8_t> fetch(std::size_t id) const;
+  std::vector<std::shared_ptr<void>> kept_;  // first: destroyed last
   std::string path_;
   std::vector<BagTopic> topics_;
   std::map<std::string, std::vector<std::size_t>> ids_;
   Fetch fetch_;
+  bool zstd_messages_ = false;
 };
 
 // A ROS 2 bag: a folder holding metadata.yaml, or one .db3 or .mcap file.

@@ -60,7 +60,7 @@ std::vector<std::uint8_t> blob(sqlite3_stmt* s, int column) {
 
 }  // namespace
 
-std::unique_ptr<MessageLog> open_sqlite_bag(const std::string& path, const std::vector<std::string>& files) {
+std::unique_ptr<IndexedLog> open_sqlite_bag(const std::string& path, const std::vector<std::string>& files) {
   struct Storage {
     std::vector<std::string> files;
     std::vector<Db> dbs;

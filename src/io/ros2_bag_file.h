@@ -12,6 +12,6 @@ namespace vilslam {
 // path: what the user named (a bag folder or one .db3 file); files: the .db3 files in order. Topic types are
 // listed by their ROS1 names (sensor_msgs/msg/Image -> sensor_msgs/Image), md5sum "*"; a topic's messages come in
 // the order of their record timestamps, then row ids, over the files in order.
-std::unique_ptr<MessageLog> open_sqlite_bag(const std::string& path, const std::vector<std::string>& files);
+std::unique_ptr<IndexedLog> open_sqlite_bag(const std::string& path, const std::vector<std::string>& files);
 
 }  // namespace vilslam

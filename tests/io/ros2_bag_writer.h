@@ -5,6 +5,7 @@
 #include <fastcdr/Cdr.h>
 #include <fastcdr/FastBuffer.h>
 #include <sqlite3.h>
+#include <zstd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -20,7 +21,14 @@ namespace vilslam::test {
 struct Ros2BagOptions {
   bool big_endian = false;  // CDR_BE instead of CDR_LE
   int files = 1;            // the messages split over this many .db3 files (topic ids differ between them)
+  std::string compression_mode;  // rosbag2's zstd compression: "" none, "file" (each .db3 as .db3.zstd), "message"
 };
+
+inline std::vector<std::uint8_t> zstd_compress(const std::uint8_t* data, std::size_t size) {
+  std::vector<std::uint8_t> out(ZSTD_compressBound(size));
+  out.resize(ZSTD_compress(out.data(), out.size(), data, size, 3));
+  return out;
+}
 
 class CdrMessage {
  public:
@@ -165,17 +173,30 @@ inline void write_ros2_bag(DatasetReader& reader, const std::filesystem::path& d
       const Ros2Message& m = messages[i];
       sqlite3_bind_int(insert, 1, id_of.at(m.topic));
       sqlite3_bind_int64(insert, 2, m.t_ns);
-      sqlite3_bind_blob(insert, 3, m.data.data(), static_cast<int>(m.data.size()), SQLITE_TRANSIENT);
+      const std::vector<std::uint8_t> data =
+          options.compression_mode == "message" ? zstd_compress(m.data.data(), m.data.size()) : m.data;
+      sqlite3_bind_blob(insert, 3, data.data(), static_cast<int>(data.size()), SQLITE_TRANSIENT);
       if (sqlite3_step(insert) != SQLITE_DONE) throw std::runtime_error("sqlite: insert failed");
       sqlite3_reset(insert);
     }
     sqlite3_finalize(insert);
     sql(db, "COMMIT;");
     sqlite3_close(db);
+    if (options.compression_mode == "file") {  // the file as one zstd frame, listed under its .zstd name
+      std::ifstream in(dir / file, std::ios::binary);
+      const std::string plain((std::istreambuf_iterator<char>(in)), {});
+      const auto packed = zstd_compress(reinterpret_cast<const std::uint8_t*>(plain.data()), plain.size());
+      std::ofstream(dir / (file + ".zstd"), std::ios::binary)
+          .write(reinterpret_cast<const char*>(packed.data()), static_cast<std::streamsize>(packed.size()));
+      std::filesystem::remove(dir / file);
+      files_yaml.replace(files_yaml.rfind(file), file.size(), file + ".zstd");
+    }
   }
   std::ofstream(dir / "metadata.yaml") << "rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: sqlite3\n"
                                           "  relative_file_paths:\n"
-                                       << files_yaml << "  compression_format: \"\"\n  compression_mode: \"\"\n";
+                                       << files_yaml << "  compression_format: \""
+                                       << (options.compression_mode.empty() ? "" : "zstd") << "\"\n  compression_mode: \""
+                                       << options.compression_mode << "\"\n";
 }
 
 }  // namespace vilslam::test

@@ -58,6 +58,15 @@ TEST_F(Ros2BagRead, ReadsAsTheFolderInEitherByteOrderAndSplitOverFiles) {
   }
 }
 
+TEST_F(Ros2BagRead, ZstdCompressedByFileOrByMessage) {
+  for (const char* mode : {"file", "message"}) {
+    SCOPED_TRACE(mode);
+    const fs::path bag = ros2_bag(std::string("zstd_") + mode, {false, 2, mode});
+    const auto from_bag = open_dataset(bag.string());
+    EXPECT_EQ(test::expect_same_events(*open_dataset(folder_), *from_bag, tolerance()), 100u + 10u + 5u + 50u);
+  }
+}
+
 TEST_F(Ros2BagRead, OneDb3FileAndTheCli) {
   const fs::path bag = ros2_bag("single");
   const fs::path db3 = bag / "single_0.db3";
@@ -92,8 +101,8 @@ TEST_F(Ros2BagRead, RefusesWhatItCannotRead) {
   };
   expect_refused(metadata_saying("rosbag_v2", "storage_identifier: sqlite3", "storage_identifier: rosbag_v2"),
                  {"metadata.yaml", "storage 'rosbag_v2' is not supported"});
-  expect_refused(metadata_saying("zstd", "compression_format: \"\"", "compression_format: zstd"),
-                 {"metadata.yaml", "compressed bag (zstd)"});
+  expect_refused(metadata_saying("lz4", "compression_format: \"\"", "compression_format: lz4"),
+                 {"metadata.yaml", "compression 'lz4' by '' is not supported"});
   expect_refused(metadata_saying("gone", "good_0.db3", "missing_0.db3"), {"missing_0.db3", "does not exist"});
 
   // Not an SQLite file.
