@@ -50,7 +50,7 @@ class Ros2BagRead : public test::RosbagFixture {
 TEST_F(Ros2BagRead, ReadsAsTheFolderInEitherByteOrderAndSplitOverFiles) {
   for (const bool big_endian : {false, true}) {
     SCOPED_TRACE(big_endian ? "CDR big-endian, 3 files" : "CDR little-endian, 3 files");
-    const fs::path bag = ros2_bag(big_endian ? "be" : "le", {big_endian, 3});
+    const fs::path bag = ros2_bag(big_endian ? "be" : "le", {big_endian, 3, ""});
     const auto from_bag = open_dataset(bag.string());
     EXPECT_EQ(from_bag->summary().format, "rosbag2");
     const auto from_folder = open_dataset(folder_);
