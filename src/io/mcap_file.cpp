@@ -103,11 +103,12 @@ struct McapStorage {
   std::ptrdiff_t cached_chunk = -1;
   std::vector<std::uint8_t> cached_records;
 
-  // One record at the top level or in a chunk: its content (of a message, at least the fixed fields),
-  // the content's full length, and where the content starts (in the file, or in the chunk's records).
-  void record(std::size_t f, std::uint8_t opcode, const std::vector<std::uint8_t>& content, std::uint64_t length,
+  // One record at the top level or in a chunk: the bytes of its content at hand (of a message, at least the
+  // fixed fields: its data is not copied), the content's full length, and where the content starts (in the
+  // file, or in the chunk's records).
+  void record(std::size_t f, std::uint8_t opcode, const std::uint8_t* content, std::size_t size, std::uint64_t length,
               std::ptrdiff_t chunk, std::uint64_t data_offset) {
-    WireReader r(content.data(), content.size());
+    WireReader r(content, size);
     if (opcode == kSchema) {
       const auto id = r.read<std::uint16_t>();
       schemas[f][id] = r.string();
@@ -125,7 +126,7 @@ struct McapStorage {
       type_of[topic] = listed;
       channels[f][id] = {topic, listed};
     } else if (opcode == kMessage) {
-      if (length < kMessagePrefix || content.size() < kMessagePrefix) throw WireError("message record shorter than its fixed fields");
+      if (length < kMessagePrefix || size < kMessagePrefix) throw WireError("message record shorter than its fixed fields");
       const auto channel_id = r.read<std::uint16_t>();
       r.read<std::uint32_t>();  // sequence
       const auto log_time_ns = r.read<std::uint64_t>();
@@ -146,7 +147,7 @@ struct McapStorage {
       std::memcpy(&length, records.data() + pos + 1, 8);
       if (length > records.size() - pos - kRecordHeader) throw WireError("record in chunk longer than the chunk");
       const auto* start = records.data() + pos + kRecordHeader;
-      record(f, opcode, std::vector<std::uint8_t>(start, start + length), length, chunk, pos + kRecordHeader);
+      record(f, opcode, start, length, length, chunk, pos + kRecordHeader);
       pos += kRecordHeader + length;
     }
   }
@@ -171,9 +172,11 @@ struct McapStorage {
       try {
         if (opcode == kDataEnd || opcode == kFooter) break;
         if (opcode == kSchema || opcode == kChannel) {
-          record(f, opcode, read_at(in, file, content_offset, length), length, -1, content_offset);
+          const auto content = read_at(in, file, content_offset, length);
+          record(f, opcode, content.data(), content.size(), length, -1, content_offset);
         } else if (opcode == kMessage) {  // the data is read when asked for
-          record(f, opcode, read_at(in, file, content_offset, std::min(length, kMessagePrefix)), length, -1, content_offset);
+          const auto prefix = read_at(in, file, content_offset, std::min(length, kMessagePrefix));
+          record(f, opcode, prefix.data(), prefix.size(), length, -1, content_offset);
         } else if (opcode == kChunk) {
           const auto content = read_at(in, file, content_offset, length);
           WireReader r(content.data(), content.size());
