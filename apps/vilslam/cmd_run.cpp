@@ -72,6 +72,9 @@ void print_summary(const OfflineRunResult& r, TimeNs start_t_ns) {
   std::printf("smoother ms: median %.2f p95 %.2f max %.2f\n", sm.median_ms, sm.p95_ms, sm.max_ms);
   if (r.realtime) print_realtime(*r.realtime);
   print_statuses(r, start_t_ns);
+  for (TimeNs t_ns : r.lidar_lost_t_ns) {
+    std::printf("LiDAR mapping lost at %.2f s (its last sweeps rejected)\n", ns_to_s(t_ns - start_t_ns));
+  }
   if (r.lidar.empty()) return;
   std::vector<double> lidar_ms;
   int degenerate = 0;
@@ -80,7 +83,8 @@ void print_summary(const OfflineRunResult& r, TimeNs start_t_ns) {
     degenerate += m.degenerate ? 1 : 0;
   }
   const TimingSummary li = summarize_timings(lidar_ms);
-  std::printf("LiDAR sweeps mapped %zu (degenerate %d, unmapped %zu)\n", r.lidar.size(), degenerate, r.unmapped_scans);
+  std::printf("LiDAR sweeps mapped %zu (degenerate %d, rejected %zu, unmapped %zu)\n", r.lidar.size(), degenerate,
+              r.lidar_rejected.size(), r.unmapped_scans);
   std::printf("lidar mapping ms: median %.2f p95 %.2f max %.2f\n", li.median_ms, li.p95_ms, li.max_ms);
   if (!r.loop) return;
   std::size_t accepted = 0;

@@ -33,6 +33,12 @@ YamlFields lidar_mapper_yaml_fields(LidarMapperConfig& c) {
   YamlFields fields = lidar_yaml_fields(c.lidar);
   fields.push_back(yaml_section(
       "mapper", {yaml_value("dewarp", c.dewarp), yaml_value("lidar_only_redewarp", c.lidar_only_redewarp)}));
+  fields.push_back(yaml_section(
+      "loss", {yaml_value("enabled", c.loss.enabled), yaml_value("min_matched_fraction", c.loss.min_matched_fraction),
+               yaml_value("min_inlier_fraction", c.loss.min_inlier_fraction), yaml_value("gap_s", c.loss.gap_s),
+               yaml_value("max_correction_m", c.loss.max_correction_m),
+               yaml_value("max_correction_deg", c.loss.max_correction_deg),
+               yaml_value("lost_after_rejected", c.loss.lost_after_rejected)}));
   return fields;
 }
 
@@ -139,8 +145,14 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
     const SE3 correction = (previous_->T_W_L * T_trans).inverse() * out.T_W_L;  // the jump from the prediction
     out.correction_m = correction.translation().norm();
     out.correction_deg = so3::log(correction.rotation()).norm() * 180.0 / M_PI;
+    out.loss = mapping_loss({out.matched_fraction, out.inlier_fraction, out.gap_s, out.correction_m, out.correction_deg},
+                            config_.loss);
   }
   out.vio_prior = has_prior;
+  if (out.loss != MappingLoss::kNone) {
+    out.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return out;
+  }
   out.num_edge_features = static_cast<int>(features.edges.size());
   out.num_surface_features = static_cast<int>(features.surfaces.size());
   map_.insert(features, out.T_W_L);

@@ -12,6 +12,7 @@
 #include "common/types.h"
 #include "lidar/feature_map.h"
 #include "lidar/lidar_config.h"
+#include "lidar/mapping_loss.h"
 #include "lidar/registration.h"
 
 namespace vilslam::lidar {
@@ -21,11 +22,12 @@ struct LidarMapperConfig {
   bool dewarp = true; // move feature points to the scan end before registration (paper eq. for P~_i)
   // Without a prior: dewarp again with the sweep's registered motion and register once more.
   bool lidar_only_redewarp = true;
+  MappingLossConfig loss;  // which registered sweeps are rejected, and when the mapper is lost
 
   LidarMapperConfig();
 };
 
-// The sections of lidar_yaml_fields plus `mapper` (dewarp, lidar_only_redewarp), bound to c's fields: the
+// The sections of lidar_yaml_fields plus `mapper` (dewarp, lidar_only_redewarp) and `loss`, bound to c's fields: the
 // `lidar_mapper:` section of a run config (pipeline/run_config.h). Validate with validate_lidar_config.
 YamlFields lidar_mapper_yaml_fields(LidarMapperConfig& c);
 
@@ -54,6 +56,9 @@ struct LidarMappingResult {
   bool converged = true;
   double correction_m = 0.0;
   double correction_deg = 0.0;
+  // Rejected (lidar/mapping_loss.h): T_W_L is where the registration ended, not the sweep's pose, and the sweep
+  // is not in the map; the mapper's last pose stays the one before it.
+  MappingLoss loss = MappingLoss::kNone;
 };
 
 class LidarMapper {
@@ -64,7 +69,8 @@ class LidarMapper {
   // LiDAR-only mapping. T_O_I_dewarp: when given, the sweep is dewarped with its relative poses instead
   // (the VIO's jump-free IMU motion, vio/vio.h); T_W_I_prior still gives the motion between sweeps.
   // prior_tilt_sigma_rad: the prior's tilt standard deviation at the scan end when known (the VIO's), which
-  // weakens the registration's tilt prior (lidar/registration.h). Throws InputError on an empty scan or a scan
+  // weakens the registration's tilt prior (lidar/registration.h). A rejected sweep (result.loss) leaves the
+  // mapper as it was: the next sweep is predicted from the last one it kept. Throws InputError on an empty scan or a scan
   // ending before the previous one.
   LidarMappingResult process(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior,
                              const std::function<SE3(TimeNs)>& T_O_I_dewarp = {}, double prior_tilt_sigma_rad = 0.0);

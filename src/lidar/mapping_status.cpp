@@ -3,6 +3,9 @@
 namespace vilslam::lidar {
 
 MappingStatus mapping_status(const LidarMappingResult& sweep, const MappingStatusThresholds& thresholds) {
+  if (sweep.loss == MappingLoss::kMismatched) return MappingStatus::kRejectedMismatched;
+  if (sweep.loss == MappingLoss::kUnmatched) return MappingStatus::kRejectedUnmatched;
+  if (sweep.loss == MappingLoss::kJump) return MappingStatus::kRejectedJump;
   if (sweep.gap_s > thresholds.gap_s) return MappingStatus::kAfterGap;
   if (!sweep.converged) return MappingStatus::kNotConverged;
   if (sweep.correction_m > thresholds.correction_m || sweep.correction_deg > thresholds.correction_deg) {
@@ -19,6 +22,9 @@ std::string mapping_status_name(MappingStatus status) {
     case MappingStatus::kAfterGap: return "after_gap";
     case MappingStatus::kNotConverged: return "not_converged";
     case MappingStatus::kPredictionContradicted: return "prediction_contradicted";
+    case MappingStatus::kRejectedMismatched: return "rejected_mismatched";
+    case MappingStatus::kRejectedUnmatched: return "rejected_unmatched";
+    case MappingStatus::kRejectedJump: return "rejected_jump";
   }
   return {};
 }

@@ -9,10 +9,12 @@ namespace vilslam {
 LidarFeeder::LidarFeeder(const lidar::LidarMapperConfig& config, const RigCalibration& calib,
                          const Trajectory* imu_poses, const Trajectory* imu_motion,
                          const std::vector<double>* imu_tilt_sigma_rad,
-                         std::vector<lidar::LidarMappingResult>* results, LoopClosureModule* loop)
+                         std::vector<lidar::LidarMappingResult>* results,
+                         std::vector<lidar::LidarMappingResult>* rejected, LoopClosureModule* loop)
     : mapper_(config, calib.T_I_L), offset_ns_(calib.lidar_time_offset_ns), lidar_(calib.lidar),
       dewarp_(config.dewarp), imu_poses_(imu_poses), imu_motion_(imu_motion),
-      imu_tilt_sigma_rad_(imu_tilt_sigma_rad), results_(results), loop_(loop) {}
+      imu_tilt_sigma_rad_(imu_tilt_sigma_rad), results_(results), rejected_(rejected), loop_(loop),
+      lost_after_rejected_(config.loss.lost_after_rejected) {}
 
 void LidarFeeder::scan(LidarScan scan) {
   scan.t_ns += offset_ns_;
@@ -63,13 +65,24 @@ void LidarFeeder::poses_advanced() {
 
 void LidarFeeder::map(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior,
                       const std::function<SE3(TimeNs)>& T_O_I_dewarp, double prior_tilt_sigma_rad) {
+  if (mapper_lost_t_ns_) {
+    ++unmapped_;
+    return;
+  }
   // A loop correction that arrived since the last sweep comes first (paper, "Re-localization").
   if (loop_) {
     if (const auto correction = loop_->take_correction()) {
       mapper_.relocalize(correction->T_W_L_last, correction->key_scans);
     }
   }
-  results_->push_back(mapper_.process(scan, T_W_I_prior, T_O_I_dewarp, prior_tilt_sigma_rad));
+  lidar::LidarMappingResult result = mapper_.process(scan, T_W_I_prior, T_O_I_dewarp, prior_tilt_sigma_rad);
+  if (result.loss != lidar::MappingLoss::kNone) {
+    if (++rejected_in_a_row_ >= lost_after_rejected_) mapper_lost_t_ns_ = result.t_ns;
+    rejected_->push_back(std::move(result));
+    return;
+  }
+  rejected_in_a_row_ = 0;
+  results_->push_back(std::move(result));
   if (loop_) loop_->scan_mapped(results_->back(), mapper_.last_features());
 }
 

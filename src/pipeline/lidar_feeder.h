@@ -20,10 +20,12 @@ class LidarFeeder {
   // imu_poses: the VIO's IMU-rate poses as they grow (vil), or nullptr for LiDAR-only mapping; imu_motion:
   // the same samples' jump-free poses T_O_I (vio/vio.h), which dewarp the sweeps, or nullptr; imu_tilt_sigma_rad:
   // the same samples' tilt standard deviations (VioImuOutput), which weigh the tilt priors, or nullptr.
-  // loop: the loop closure module, or nullptr.
+  // results: every sweep mapped; rejected: every sweep the mapper rejected (lidar/mapping_loss.h), which neither
+  // the results nor loop closure see. loop: the loop closure module, or nullptr.
   LidarFeeder(const lidar::LidarMapperConfig& config, const RigCalibration& calib, const Trajectory* imu_poses,
               const Trajectory* imu_motion, const std::vector<double>* imu_tilt_sigma_rad,
-              std::vector<lidar::LidarMappingResult>* results, LoopClosureModule* loop = nullptr);
+              std::vector<lidar::LidarMappingResult>* results, std::vector<lidar::LidarMappingResult>* rejected,
+              LoopClosureModule* loop = nullptr);
 
   void scan(LidarScan scan);
   // Maps the waiting sweeps that the IMU-rate poses now cover.
@@ -35,8 +37,12 @@ class LidarFeeder {
   void vio_lost();
   // At the end of the data: poses_advanced(), and a VIO lost for good leaves no sweep waiting (mapped LiDAR-only).
   void finish();
-  // Sweeps no VIO pose covers (before initialization or after the last pose) are left unmapped.
+  // Sweeps no VIO pose covers (before initialization or after the last pose), and those after the mapper was
+  // lost, are left unmapped.
   std::size_t unmapped_scans() const { return unmapped_ + waiting_.size(); }
+  // The end of the sweep whose rejection made the mapper lost (loss.lost_after_rejected in a row): it maps
+  // nothing more.
+  std::optional<TimeNs> lost_t_ns() const { return mapper_lost_t_ns_; }
   // Sweeps still waiting for the VIO poses to reach their end.
   std::size_t waiting_scans() const { return waiting_.size(); }
   // The newest mapped sweep's features as registered (lidar/lidar_mapper.h).
@@ -54,7 +60,11 @@ class LidarFeeder {
   const Trajectory* imu_motion_;
   const std::vector<double>* imu_tilt_sigma_rad_;
   std::vector<lidar::LidarMappingResult>* results_;
+  std::vector<lidar::LidarMappingResult>* rejected_;
   LoopClosureModule* loop_;
+  int lost_after_rejected_;
+  int rejected_in_a_row_ = 0;
+  std::optional<TimeNs> mapper_lost_t_ns_;
   std::deque<LidarScan> waiting_;
   std::size_t unmapped_ = 0;
   std::optional<std::size_t> lost_after_;   // while the VIO is lost: the number of poses it published before

@@ -126,11 +126,17 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
   // Resets (run --reset-at): each segment is a new System, re-localizing in the map of the ones before it.
   std::vector<TimeNs> resets_ns;
   for (double reset_s : config.reset_at_s) resets_ns.push_back(summary.start_t_ns + s_to_ns(reset_s));
+  // Resets decided by the run (config.reset_on_lidar_lost): checked every reset_check_s of data.
+  const bool reset_on_lost = config.reset_on_lidar_lost && config.mode == RunMode::kVil && config.loop.enabled;
+  const TimeNs check_period_ns = std::max<TimeNs>(1, s_to_ns(config.reset_check_s));
+  // The map of the segments so far: made at the first reset, so that a run without one is a single System's.
   std::optional<loop::SavedMap> map;
-  if (!resets_ns.empty()) {
+  const auto make_map = [&]() {
+    if (map) return;
     const std::uint64_t vocabulary_id = loop::vocabulary_identity(vocabulary_file(config.vocabulary));
     map = config.load_map.empty() ? empty_map(calib, vocabulary_id) : load_checked_map(config.load_map, vocabulary_id, calib);
-  }
+  };
+  if (!resets_ns.empty()) make_map();
   auto system = std::make_unique<System>(calib, config, callbacks);
   // After a reset the robot is likely moving: the new VIO initializes by visual-inertial alignment.
   OfflineRunConfig restart_config = config;
@@ -145,7 +151,7 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
     const QueueDepths d = system->max_queue_depths();
     depths = {std::max(depths.frontend, d.frontend), std::max(depths.smoother, d.smoother), std::max(depths.lidar, d.lidar)};
     OfflineRunResult segment = system->finish();
-    if (resets_ns.empty()) {
+    if (!map) {
       result = std::move(segment);
       return;
     }
@@ -180,17 +186,30 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
   std::optional<TimeNs> first_t_ns;
   TimeNs last_t_ns = 0;
   std::size_t next_reset = 0;
+  TimeNs next_check_ns = summary.start_t_ns + check_period_ns;
   while (auto event = reader.next()) {
     if (progress) progress(double(event->t_ns - summary.start_t_ns) / span_ns);
     if (!first_t_ns) first_t_ns = event->t_ns;
     last_t_ns = event->t_ns;
     if (clock) release_until(event->t_ns);
-    if (next_reset < resets_ns.size() && event->t_ns >= resets_ns[next_reset]) {
+    std::optional<TimeNs> reset_ns;
+    if (next_reset < resets_ns.size() && event->t_ns >= resets_ns[next_reset]) reset_ns = resets_ns[next_reset++];
+    bool lost = false;
+    for (; reset_on_lost && !reset_ns && event->t_ns >= next_check_ns; next_check_ns += check_period_ns) {
+      // Offline the modules catch up first, so that what they decided depends on the data before the check only.
+      if (!clock) system->wait_idle();
+      lost = system->lidar_lost();
+      if (lost) reset_ns = next_check_ns;
+    }
+    if (reset_ns) {
       // Everything before the reset is forgotten but the map: a sweep still held (it began before) is lost.
       held_sweeps.clear();
+      make_map();
       end_segment();
-      segment_start_t_ns = resets_ns[next_reset++];
-      spdlog::info("reset of the whole state at {:.3f} s", ns_to_s(segment_start_t_ns - summary.start_t_ns));
+      segment_start_t_ns = *reset_ns;
+      next_check_ns = segment_start_t_ns + check_period_ns;
+      spdlog::info("reset of the whole state at {:.3f} s{}", ns_to_s(segment_start_t_ns - summary.start_t_ns),
+                   lost ? " (LiDAR mapping was lost)" : "");
       system = std::make_unique<System>(calib, restart_config, callbacks, *map);
     }
     bool last_frame_handed_over = false;

@@ -33,7 +33,8 @@ YamlFields run_yaml_fields(OfflineRunConfig& c) {
           yaml_section("lidar_mapper", lidar::lidar_mapper_yaml_fields(c.lidar)),
           yaml_section("loop_closure", std::move(loop_fields)),
           yaml_section("time_offset", time_offset_yaml_fields(c.time_offset)),
-          yaml_section("pipeline", {yaml_value("threads", c.threads)})};
+          yaml_section("pipeline", {yaml_value("threads", c.threads), yaml_value("reset_on_lidar_lost", c.reset_on_lidar_lost),
+                                    yaml_value("reset_check_s", c.reset_check_s)})};
 }
 
 void validate_time_offset_config(const TimeOffsetConfig& c, const std::string& path) {
@@ -82,6 +83,10 @@ OfflineRunConfig load_run_config(const std::string& path) {
   loop::validate_loop_closure_config(c.loop, path);
   validate_graph_config(c.graph, path);
   validate_time_offset_config(c.time_offset, path);
+  lidar::validate_mapping_loss_config(c.lidar.loss, path);
+  if (!(c.reset_check_s > 0) || !std::isfinite(c.reset_check_s)) {
+    throw InputError(path, "'pipeline.reset_check_s' must be positive and finite");
+  }
   return c;
 }
 

@@ -73,6 +73,10 @@ std::string timings_json(RunMode mode, const OfflineRunResult& r, const std::vec
   json.key("matches_max").value(max_it == r.matches_per_frame.end() ? 0 : *max_it);
   write_timings(json, series, "module");
   json.key("lidar_unmapped_scans").value(static_cast<std::uint64_t>(r.unmapped_scans));
+  json.key("lidar_rejected_scans").value(static_cast<std::uint64_t>(r.lidar_rejected.size()));
+  json.key("lidar_lost_t_ns").begin_array();
+  for (TimeNs t_ns : r.lidar_lost_t_ns) json.value(static_cast<std::int64_t>(t_ns));
+  json.end_array();
   if (r.loop) {
     json.key("key_frames").value(static_cast<std::uint64_t>(r.loop->key_frames));
     json.key("loop_candidates").value(static_cast<std::uint64_t>(r.loop->candidates.size()));
@@ -253,7 +257,7 @@ void write_run_outputs(const std::string& out_dir, const OfflineRunConfig& confi
       write_trajectory((partial / "lidar.tum").string(), T_W_L, TrajectoryFormat::kTum);
     }
     write_file_atomic((partial / "degeneracy.csv").string(), degeneracy_csv(result.lidar));
-    write_file_atomic((partial / "lidar_status.csv").string(), lidar_status_csv(result.lidar));
+    write_file_atomic((partial / "lidar_status.csv").string(), lidar_status_csv(result.lidar, result.lidar_rejected));
   }
   const std::vector<TimingSeries> series = timing_series(result);
   write_file_atomic((partial / "timings.json").string(), timings_json(mode, result, series));

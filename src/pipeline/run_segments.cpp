@@ -73,6 +73,8 @@ void append_segment(OfflineRunResult& run, OfflineRunResult&& segment, TimeNs st
   append(run.time_offset_online, std::move(segment.time_offset_online));
   run.imu_samples += segment.imu_samples;
   append(run.lidar, std::move(segment.lidar));
+  append(run.lidar_rejected, std::move(segment.lidar_rejected));
+  append(run.lidar_lost_t_ns, std::move(segment.lidar_lost_t_ns));
   run.unmapped_scans += segment.unmapped_scans;
   if (segment.loop) {
     if (!run.loop) run.loop.emplace();

@@ -1,5 +1,6 @@
 #include "pipeline/run_status.h"
 
+#include <algorithm>
 #include <iomanip>
 #include <sstream>
 
@@ -17,10 +18,26 @@ std::string vio_status_csv(const std::vector<VioStatusRecord>& states) {
   return out.str();
 }
 
-std::string lidar_status_csv(const std::vector<lidar::LidarMappingResult>& sweeps) {
+namespace {
+
+// Pointers to the mapped and the rejected sweeps, in time order (a segment's sweeps after a reset come later).
+std::vector<const lidar::LidarMappingResult*> in_time_order(const std::vector<lidar::LidarMappingResult>& sweeps,
+                                                            const std::vector<lidar::LidarMappingResult>& rejected) {
+  std::vector<const lidar::LidarMappingResult*> all;
+  for (const auto& m : sweeps) all.push_back(&m);
+  for (const auto& m : rejected) all.push_back(&m);
+  std::stable_sort(all.begin(), all.end(), [](const auto* a, const auto* b) { return a->t_ns < b->t_ns; });
+  return all;
+}
+
+}  // namespace
+
+std::string lidar_status_csv(const std::vector<lidar::LidarMappingResult>& sweeps,
+                             const std::vector<lidar::LidarMappingResult>& rejected) {
   std::ostringstream out;
   out << std::setprecision(17) << "t_ns,status,gap_s,vio_prior,converged,correction_m,correction_deg,degenerate\n";
-  for (const lidar::LidarMappingResult& m : sweeps) {
+  for (const lidar::LidarMappingResult* sweep : in_time_order(sweeps, rejected)) {
+    const lidar::LidarMappingResult& m = *sweep;
     out << m.t_ns << ',' << lidar::mapping_status_name(lidar::mapping_status(m)) << ',' << m.gap_s << ','
         << (m.vio_prior ? 1 : 0) << ',' << (m.converged ? 1 : 0) << ',' << m.correction_m << ',' << m.correction_deg
         << ',' << (m.degenerate ? 1 : 0) << '\n';
@@ -53,10 +70,10 @@ std::vector<StatusStretch> status_stretches(const OfflineRunResult& run, double 
     if (s.status == VioStatus::kTracking) continue;
     add_record(stretches, "vio", vio_status_name(s), s.t_ns, s.imu_gap_s, join_s);
   }
-  for (const lidar::LidarMappingResult& m : run.lidar) {
-    const lidar::MappingStatus status = lidar::mapping_status(m);
+  for (const lidar::LidarMappingResult* m : in_time_order(run.lidar, run.lidar_rejected)) {
+    const lidar::MappingStatus status = lidar::mapping_status(*m);
     if (status == lidar::MappingStatus::kOk || status == lidar::MappingStatus::kDegenerate) continue;
-    add_record(stretches, "lidar", lidar::mapping_status_name(status), m.t_ns, m.gap_s, join_s);
+    add_record(stretches, "lidar", lidar::mapping_status_name(status), m->t_ns, m->gap_s, join_s);
   }
   return stretches;
 }

@@ -11,7 +11,9 @@
 namespace vilslam {
 
 std::string vio_status_csv(const std::vector<VioStatusRecord>& states);
-std::string lidar_status_csv(const std::vector<lidar::LidarMappingResult>& sweeps);
+// The mapped and the rejected sweeps (OfflineRunResult::lidar, lidar_rejected), one row each in time order.
+std::string lidar_status_csv(const std::vector<lidar::LidarMappingResult>& sweeps,
+                             const std::vector<lidar::LidarMappingResult>& rejected);
 
 struct StatusStretch {
   std::string module;  // "vio" | "lidar"
@@ -22,7 +24,7 @@ struct StatusStretch {
 };
 
 // Consecutive records of one status other than tracking / ok (degenerate sweeps too: the run counts them
-// apart), joined while less than join_s apart, in time order per module (VIO first).
+// apart), rejected sweeps included, joined while less than join_s apart, in time order per module (VIO first).
 std::vector<StatusStretch> status_stretches(const OfflineRunResult& run, double join_s = 1.0);
 
 }  // namespace vilslam

@@ -46,6 +46,11 @@ struct OfflineRunConfig {
   std::vector<double> reset_at_s;
   TimeOffsetConfig time_offset;          // vio and vil: estimate the camera-IMU time offset before the run
   bool threads = true;  // the frontend, the smoother and the LiDAR side each on a thread (same output as without)
+  // vil with loop closure: when LiDAR mapping is lost (lidar/mapping_loss.h) the whole state is reset as by
+  // reset_at_s, at the first check from then on; offline the checks wait for the modules to catch up, every
+  // reset_check_s of data, so that the reset's instant depends on the data only (docs/pipeline.md, "Resets").
+  bool reset_on_lidar_lost = true;
+  double reset_check_s = 0.5;
   RealtimeConfig realtime;  // speed 0: offline (deterministic); > 0: events on the wall clock (pipeline/realtime.h)
 };
 
@@ -100,7 +105,9 @@ struct OfflineRunResult {
   std::vector<double> smoother_ms;  // per stereo frame (Vio::add_frame)
   std::size_t imu_samples = 0;
   std::vector<lidar::LidarMappingResult> lidar;  // one per mapped sweep
-  std::size_t unmapped_scans = 0;  // vil: sweeps no VIO pose covered
+  std::vector<lidar::LidarMappingResult> lidar_rejected;  // the sweeps mapping rejected (lidar/mapping_loss.h)
+  std::vector<TimeNs> lidar_lost_t_ns;  // when LiDAR mapping was lost (at most once a segment)
+  std::size_t unmapped_scans = 0;  // sweeps no VIO pose covered (vil), or after mapping was lost
   std::optional<LoopClosureOutput> loop;  // vil: odometry, loop-corrected poses, loop candidates
   std::optional<TimeOffsetEstimate> time_offset;  // when estimated (config.time_offset.enabled) and observable
   std::vector<OnlineTimeOffsetUpdate> time_offset_online;  // config.time_offset.online: every estimate made

@@ -56,6 +56,13 @@ class Stage {
     return max_depth_;
   }
 
+  // Waits until every message pushed so far is handled (or the stage failed); the stage goes on taking messages.
+  void wait_idle() {
+    if (!worker_.joinable()) return;
+    std::unique_lock<std::mutex> lock(mutex_);
+    idle_.wait(lock, [this] { return (queue_.empty() && !busy_) || error_; });
+  }
+
   // Waits until every pushed message is handled, then rethrows what handle() threw, if anything.
   void finish() {
     stop(/*drain=*/true);
@@ -71,6 +78,7 @@ class Stage {
       error_ = std::current_exception();
       queue_.clear();
       space_.notify_all();
+      idle_.notify_all();
     }
   }
 
@@ -83,9 +91,13 @@ class Stage {
         if (queue_.empty()) return;  // closed and drained
         message = std::move(queue_.front());
         queue_.pop_front();
+        busy_ = true;
         space_.notify_one();
       }
       if (!failed()) call(std::move(message));
+      std::lock_guard<std::mutex> lock(mutex_);
+      busy_ = false;
+      if (queue_.empty()) idle_.notify_all();
     }
   }
 
@@ -106,7 +118,9 @@ class Stage {
   mutable std::mutex mutex_;
   std::condition_variable ready_;
   std::condition_variable space_;
+  std::condition_variable idle_;
   std::deque<Message> queue_;
+  bool busy_ = false;  // the worker is handling a message
   std::size_t max_depth_ = 0;
   bool closed_ = false;
   std::exception_ptr error_;

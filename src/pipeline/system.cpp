@@ -1,6 +1,7 @@
 #include "pipeline/system.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <deque>
 #include <limits>
@@ -50,6 +51,7 @@ using FrontendMessage = std::variant<ImuSample, StereoFrame, LidarScan>;
 // is wanted) and the overload policy's load (real-time mode only).
 struct Shared {
   SystemCallbacks callbacks;
+  std::atomic<bool> lidar_lost{false};
   std::optional<LivePropagator> live;
   std::optional<PipelineLoad> load;
 };
@@ -75,7 +77,8 @@ class LidarSide {
       }
     }
     lidar_.emplace(config.lidar, calib, with_vio ? &imu_poses_ : nullptr, with_vio ? &imu_motion_ : nullptr,
-                   with_vio ? &imu_tilt_sigma_rad_ : nullptr, &result->lidar, loop_ ? &*loop_ : nullptr);
+                   with_vio ? &imu_tilt_sigma_rad_ : nullptr, &result->lidar, &result->lidar_rejected,
+                   loop_ ? &*loop_ : nullptr);
   }
 
   void handle(LidarMessage&& message) {
@@ -92,16 +95,27 @@ class LidarSide {
       lidar_->scan(std::move(std::get<LidarScan>(message)));
     }
     publish();
+    note_lost();
   }
 
   void finish() {
     lidar_->finish();
     publish();
+    note_lost();
     result_->unmapped_scans = lidar_->unmapped_scans();
     if (loop_) result_->loop = loop_->finish();
   }
 
  private:
+  void note_lost() {
+    if (!lidar_->lost_t_ns() || !result_->lidar_lost_t_ns.empty()) return;
+    result_->lidar_lost_t_ns.push_back(*lidar_->lost_t_ns());
+    spdlog::warn("LiDAR mapping lost at t_ns={}: its last sweeps were rejected (the motion prior no longer places "
+                 "them on the map; lidar_status.csv); no LiDAR poses after it until a reset",
+                 *lidar_->lost_t_ns());
+    shared_->lidar_lost = true;
+  }
+
   // What was mapped (or given up) since the last call: its outputs, and the load it leaves.
   void publish() {
     const SystemCallbacks& cb = shared_->callbacks;
@@ -373,6 +387,15 @@ bool System::push_scan(LidarScan scan) {
 bool System::failed() const {
   return (impl_->frontend && impl_->frontend->failed()) || (impl_->smoother && impl_->smoother->failed()) ||
          (impl_->lidar && impl_->lidar->failed());
+}
+
+bool System::lidar_lost() const { return impl_->shared.lidar_lost; }
+
+void System::wait_idle() {
+  // Upstream first: once a module is idle, nothing more reaches the next one until the next push.
+  if (impl_->frontend) impl_->frontend->wait_idle();
+  if (impl_->smoother) impl_->smoother->wait_idle();
+  if (impl_->lidar) impl_->lidar->wait_idle();
 }
 
 std::size_t System::dropped_frames() const { return impl_->shared.load ? impl_->shared.load->frames.dropped() : 0; }

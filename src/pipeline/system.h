@@ -61,6 +61,12 @@ class System {
 
   // A module threw: later pushes are dropped, finish() rethrows its error.
   bool failed() const;
+  // LiDAR mapping is lost (lidar/mapping_loss.h): it maps no more sweeps. A new System, given the map of this
+  // one (finish(), pipeline/run_segments.h join_map), starts again and re-localizes in it (offline_runner.h).
+  bool lidar_lost() const;
+  // Waits until every module has handled what was pushed so far; pushing may go on afterwards. What the outputs
+  // hold then depends on the pushed data only.
+  void wait_idle();
   std::size_t dropped_frames() const;
   std::size_t dropped_sweeps() const;
   QueueDepths max_queue_depths() const;

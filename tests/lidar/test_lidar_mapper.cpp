@@ -286,6 +286,37 @@ TEST(LidarMapper, InAVioOutageTheMotionModelKeepsThePriorAidedMotion) {
   EXPECT_GT(lidar_only_err_m, 0.3);
 }
 
+// Two sweeps missing, and the prior 20 m off for the next two (a VIO that lost track while the whole rig was
+// out): their registrations find little to match where the prediction puts them, so both are rejected and the
+// map stays as it was; with the prior right again the next sweep is predicted from the last sweep kept and
+// registers as before. Without the check the first of them enters the map where the prior put it.
+TEST(LidarMapper, RejectsSweepsThePriorPutsOffTheMapAndLeavesTheMapAsItWas) {
+  const Sequence seq = simulate(sim::Scenario::kHighbay, 5.0, 13);
+  const SE3 jump(Quat::Identity(), Vec3(20.0, 0.0, 0.0));
+  const auto jumped = [&](TimeNs t) { return jump * seq.T_W_I(t); };
+  LidarMapper mapper(LidarMapperConfig{}, T_I_L());
+  for (int k = 0; k < 8; ++k) ASSERT_EQ(mapper.process(seq.scans[k], seq.T_W_I).loss, MappingLoss::kNone) << k;
+  const std::vector<Vec3> edges = mapper.map().edges.points(), surfaces = mapper.map().surfaces.points();
+  for (int k = 10; k < 12; ++k) {
+    const LidarMappingResult r = mapper.process(seq.scans[k], jumped);
+    EXPECT_NE(r.loss, MappingLoss::kNone) << k << ": matched " << r.matched_fraction << ", inliers " << r.inlier_fraction;
+    EXPECT_EQ(mapping_status_name(mapping_status(r)).rfind("rejected_", 0), 0u);
+  }
+  EXPECT_EQ(mapper.map().edges.points(), edges);
+  EXPECT_EQ(mapper.map().surfaces.points(), surfaces);
+  const LidarMappingResult after = mapper.process(seq.scans[12], seq.T_W_I);
+  EXPECT_EQ(after.loss, MappingLoss::kNone);
+  const SE3 truth = seq.T_W_I(after.t_ns) * T_I_L();
+  EXPECT_LT((after.T_W_L.translation() - truth.translation()).norm(), 0.05);
+  LidarMapperConfig unchecked;
+  unchecked.loss.enabled = false;
+  LidarMapper blind(unchecked, T_I_L());
+  for (int k = 0; k < 8; ++k) blind.process(seq.scans[k], seq.T_W_I);
+  const std::size_t before = blind.map().surfaces.num_points();
+  EXPECT_EQ(blind.process(seq.scans[10], jumped).loss, MappingLoss::kNone);
+  EXPECT_GT(blind.map().surfaces.num_points(), before + 100);
+}
+
 TEST(LidarMapper, RejectsEmptyAndOutOfOrderScans) {
   const Sequence seq = simulate(sim::Scenario::kHighbay, 5.0, 2);
   LidarMapper mapper(LidarMapperConfig{}, T_I_L());
