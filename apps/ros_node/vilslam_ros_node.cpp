@@ -1,8 +1,10 @@
 // vilslam_ros_node: the live system on a ROS1 robot, a thin wrapper over vilslam::System (docs/pipeline.md,
 // "The ROS1 node"). It subscribes to the rig's streams, pushes them through LiveInput (stereo pairing, each
 // stream in time order) into the System in real-time mode (the overload policy on), and publishes each
-// output the moment its module produces it. On shutdown (Ctrl-C) it finishes the run and, with --out, writes
-// the outputs `vilslam run` writes.
+// output the moment its module produces it. When LiDAR mapping is lost (vil with loop closure) it resets the whole
+// state as `vilslam run` does and the new System re-localizes in the map of the one before (docs/pipeline.md,
+// "Resets after a lost map"). On shutdown (Ctrl-C) it finishes the run and, with --out, writes the outputs
+// `vilslam run` writes.
 //
 //   vilslam_ros_node --rig RIG.yaml [--config RUN.yaml] [--mode vil|vio|lidar-only] [--out DIR]
 //                    [imu0:=/imu/data cam0:=/left/image_raw cam1:=/right/image_raw lidar0:=/velodyne_points]
@@ -25,6 +27,8 @@
 
 #include <atomic>
 #include <cstdio>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +39,7 @@
 #include "pipeline/live_input.h"
 #include "pipeline/run_config.h"
 #include "pipeline/run_outputs.h"
+#include "pipeline/run_segments.h"
 #include "pipeline/system.h"
 
 namespace vilslam {
@@ -109,10 +114,23 @@ class Node {
         path_pub_(private_nh.advertise<nav_msgs::Path>("path", 2)),
         sparse_map_(private_nh.advertise<sensor_msgs::PointCloud2>("sparse_map", 4)),
         tf_(nh.advertise<tf2_msgs::TFMessage>("/tf", 400)),
-        system_(calib, config, callbacks()),
-        input_(LiveInputConfig{}, LiveInputSink{[this](const ImuSample& s) { system_.push_imu(s); },
-                                                [this](StereoFrame f) { system_.push_stereo(std::move(f)); },
-                                                [this](LidarScan s) { system_.push_scan(std::move(s)); }}) {
+        calib_(calib), config_(config),
+        reset_on_lost_(config.reset_on_lidar_lost && config.mode == RunMode::kVil && config.loop.enabled),
+        system_(std::make_unique<System>(calib, config, callbacks())),
+        input_(LiveInputConfig{}, LiveInputSink{[this](const ImuSample& s) {
+                                                  system_->push_imu(s);
+                                                  pushed(s.t_ns);
+                                                },
+                                                [this](StereoFrame f) {
+                                                  const TimeNs t_ns = f.t_ns;
+                                                  system_->push_stereo(std::move(f));
+                                                  pushed(t_ns);
+                                                },
+                                                [this](LidarScan s) {
+                                                  const TimeNs t_ns = s.t_ns;
+                                                  system_->push_scan(std::move(s));
+                                                  pushed(t_ns);
+                                                }}) {
     path_.header.frame_id = kWorldFrame;
     const bool with_vio = config.mode != RunMode::kLidarOnly;
     if (with_vio) {
@@ -131,18 +149,31 @@ class Node {
   OfflineRunResult finish() {
     subscriptions_.clear();
     publishing_ = false;
-    return system_.finish();
+    dropped_frames_ += system_->dropped_frames();
+    dropped_sweeps_ += system_->dropped_sweeps();
+    return segments_ ? segments_->finish(system_->finish()) : system_->finish();
   }
   void print_summary(const OfflineRunResult& result) const {
     const LiveInputDrops& d = input_.drops();
     std::printf("vilslam node: %zu stereo frame states, %zu sweeps mapped; dropped by the overload policy %zu frames, "
                 "%zu sweeps; out of order %zu IMU samples, %zu frames, %zu sweeps; unpaired images %zu; bad messages "
                 "%zu\n",
-                result.camera_states.size(), result.lidar.size(), system_.dropped_frames(), system_.dropped_sweeps(),
+                result.camera_states.size(), result.lidar.size(), dropped_frames_, dropped_sweeps_,
                 d.imu_out_of_order, d.frames_out_of_order, d.scans_out_of_order, d.unpaired_images, bad_messages_);
   }
 
  private:
+  // After each push (the spinner's thread): a LiDAR mapping lost resets the whole state at the pushed stamp.
+  void pushed(TimeNs t_ns) {
+    if (!segments_) segments_.emplace(calib_, config_, t_ns);
+    if (!reset_on_lost_ || !system_->lidar_lost()) return;
+    dropped_frames_ += system_->dropped_frames();
+    dropped_sweeps_ += system_->dropped_sweeps();
+    const loop::SavedMap& map = segments_->reset(system_->finish(), t_ns);
+    system_ = std::make_unique<System>(calib_, segments_->restart_config(), callbacks(), map);
+    ROS_WARN("vilslam: LiDAR mapping was lost; the whole state was reset and re-localizes in the map so far");
+  }
+
   SystemCallbacks callbacks() {
     SystemCallbacks cb;
     cb.imu_pose = [this](const TimedPose& p) {
@@ -225,7 +256,12 @@ class Node {
   ros::Publisher odometry_, camera_state_, lidar_pose_, path_pub_, sparse_map_, tf_;
   nav_msgs::Path path_;  // the LiDAR thread's only
   std::atomic<bool> publishing_{true};
-  System system_;
+  RigCalibration calib_;
+  OfflineRunConfig config_;
+  bool reset_on_lost_;
+  std::optional<RunSegments> segments_;  // from the first push on
+  std::unique_ptr<System> system_;
+  std::size_t dropped_frames_ = 0, dropped_sweeps_ = 0;  // by the Systems finished so far
   LiveInput input_;  // the spinner's thread only
   std::vector<ros::Subscriber> subscriptions_;
   std::size_t bad_messages_ = 0;

@@ -129,37 +129,16 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
   // Resets decided by the run (config.reset_on_lidar_lost): checked every reset_check_s of data.
   const bool reset_on_lost = config.reset_on_lidar_lost && config.mode == RunMode::kVil && config.loop.enabled;
   const TimeNs check_period_ns = std::max<TimeNs>(1, s_to_ns(config.reset_check_s));
-  // The map of the segments so far: made at the first reset, so that a run without one is a single System's.
-  std::optional<loop::SavedMap> map;
-  const auto make_map = [&]() {
-    if (map) return;
-    const std::uint64_t vocabulary_id = loop::vocabulary_identity(vocabulary_file(config.vocabulary));
-    map = config.load_map.empty() ? empty_map(calib, vocabulary_id) : load_checked_map(config.load_map, vocabulary_id, calib);
-  };
-  if (!resets_ns.empty()) make_map();
+  RunSegments segments(calib, config, summary.start_t_ns);
   auto system = std::make_unique<System>(calib, config, callbacks);
-  // After a reset the robot is likely moving: the new VIO initializes by visual-inertial alignment.
-  OfflineRunConfig restart_config = config;
-  restart_config.vio.initializer.moving_start = true;
-  OfflineRunResult result;
-  TimeNs segment_start_t_ns = summary.start_t_ns;
   std::size_t dropped_frames = 0, dropped_sweeps = 0;
   QueueDepths depths;
-  const auto end_segment = [&]() {
+  const auto end_system = [&]() {
     dropped_frames += system->dropped_frames();
     dropped_sweeps += system->dropped_sweeps();
     const QueueDepths d = system->max_queue_depths();
     depths = {std::max(depths.frontend, d.frontend), std::max(depths.smoother, d.smoother), std::max(depths.lidar, d.lidar)};
-    OfflineRunResult segment = system->finish();
-    if (!map) {
-      result = std::move(segment);
-      return;
-    }
-    if (!join_map(*map, *segment.loop)) {
-      spdlog::warn("the segment from {:.3f} s never re-localized: its poses stay in its own frame, out of the map",
-                   ns_to_s(segment_start_t_ns - summary.start_t_ns));
-    }
-    append_segment(result, std::move(segment), segment_start_t_ns);
+    return system->finish();
   };
   const bool with_vio = config.mode != RunMode::kLidarOnly;
 
@@ -204,13 +183,11 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
     if (reset_ns) {
       // Everything before the reset is forgotten but the map: a sweep still held (it began before) is lost.
       held_sweeps.clear();
-      make_map();
-      end_segment();
-      segment_start_t_ns = *reset_ns;
-      next_check_ns = segment_start_t_ns + check_period_ns;
-      spdlog::info("reset of the whole state at {:.3f} s{}", ns_to_s(segment_start_t_ns - summary.start_t_ns),
+      const loop::SavedMap& map = segments.reset(end_system(), *reset_ns);
+      next_check_ns = *reset_ns + check_period_ns;
+      spdlog::info("reset of the whole state at {:.3f} s{}", ns_to_s(*reset_ns - summary.start_t_ns),
                    lost ? " (LiDAR mapping was lost)" : "");
-      system = std::make_unique<System>(calib, restart_config, callbacks, *map);
+      system = std::make_unique<System>(calib, segments.restart_config(), callbacks, map);
     }
     bool last_frame_handed_over = false;
     std::visit(
@@ -236,7 +213,7 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
     if ((with_vio && last_frame_handed_over) || system->failed()) break;
   }
   if (clock && !system->failed()) release_until(held_sweeps.empty() ? last_t_ns : held_sweeps.back().end_t_ns());
-  end_segment();
+  OfflineRunResult result = segments.finish(end_system());
   result.time_offset = time_offset;
   if (!result.time_offset_online.empty()) {
     const OnlineTimeOffsetUpdate& last = result.time_offset_online.back();

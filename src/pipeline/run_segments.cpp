@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include <spdlog/spdlog.h>
+
 namespace vilslam {
 namespace {
 
@@ -97,6 +99,36 @@ void append_segment(OfflineRunResult& run, OfflineRunResult&& segment, TimeNs st
     to.map_loops += from.map_loops;
     if (from.mount_tilt_L) to.mount_tilt_L = from.mount_tilt_L;  // the latest segment's estimate
   }
+}
+
+RunSegments::RunSegments(const RigCalibration& rig, const OfflineRunConfig& config, TimeNs first_t_ns)
+    : rig_(rig), restart_config_(config), first_t_ns_(first_t_ns), segment_start_t_ns_(first_t_ns) {
+  restart_config_.vio.initializer.moving_start = true;
+}
+
+void RunSegments::close(OfflineRunResult&& segment) {
+  if (!map_) {
+    const std::uint64_t vocabulary_id = loop::vocabulary_identity(vocabulary_file(restart_config_.vocabulary));
+    const std::string& loaded = restart_config_.load_map;
+    map_ = loaded.empty() ? empty_map(rig_, vocabulary_id) : load_checked_map(loaded, vocabulary_id, rig_);
+  }
+  if (!segment.loop || !join_map(*map_, *segment.loop)) {
+    spdlog::warn("the segment from {:.3f} s never re-localized: its poses stay in its own frame, out of the map",
+                 ns_to_s(segment_start_t_ns_ - first_t_ns_));
+  }
+  append_segment(run_, std::move(segment), segment_start_t_ns_);
+}
+
+const loop::SavedMap& RunSegments::reset(OfflineRunResult&& segment, TimeNs t_ns) {
+  close(std::move(segment));
+  segment_start_t_ns_ = t_ns;
+  return *map_;
+}
+
+OfflineRunResult RunSegments::finish(OfflineRunResult&& segment) {
+  if (!map_) return std::move(segment);
+  close(std::move(segment));
+  return std::move(run_);
 }
 
 }  // namespace vilslam

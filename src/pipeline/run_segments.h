@@ -1,8 +1,10 @@
 #pragma once
-// A run cut into segments by resets of the whole state (run --reset-at; docs/loop.md, "Forced resets"): each
-// segment starts a new System, which re-localizes in the map of the segments before it (the map-reuse
-// machinery, in memory). These put a segment's outputs after the earlier ones' and grow that map.
+// A run cut into segments by resets of the whole state (run --reset-at, docs/loop.md "Forced resets"; or after
+// LiDAR mapping was lost, docs/pipeline.md "Resets after a lost map"): each segment starts a new System, which
+// re-localizes in the map of the segments before it (the map-reuse machinery, in memory). These put a segment's
+// outputs after the earlier ones' and grow that map.
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "common/calibration.h"
@@ -27,5 +29,33 @@ bool join_map(loop::SavedMap& map, const LoopClosureOutput& run);
 // final poses in the map's once re-localized), counts added up, and the segment's entry in run.segments.
 // start_t_ns: the instant the segment's data begins.
 void append_segment(OfflineRunResult& run, OfflineRunResult&& segment, TimeNs start_t_ns);
+
+// A run as its Systems one after the other (the offline runner's, the live node's). Until the first reset it is a
+// single System's run, with no map and no segments.
+class RunSegments {
+ public:
+  // first_t_ns: the run's first event. config.load_map: a saved map the run starts in, or none.
+  RunSegments(const RigCalibration& rig, const OfflineRunConfig& config, TimeNs first_t_ns);
+
+  // The current segment ends with its System's outputs, and the next begins at t_ns. Returns the map of every
+  // segment so far, for the next System (given restart_config()).
+  const loop::SavedMap& reset(OfflineRunResult&& segment, TimeNs t_ns);
+  // The last segment ends: the whole run.
+  OfflineRunResult finish(OfflineRunResult&& segment);
+
+  // The config of a System after a reset: the robot is likely moving, so the VIO aligns in motion.
+  const OfflineRunConfig& restart_config() const { return restart_config_; }
+  TimeNs segment_start_t_ns() const { return segment_start_t_ns_; }
+
+ private:
+  void close(OfflineRunResult&& segment);
+
+  RigCalibration rig_;
+  OfflineRunConfig restart_config_;
+  TimeNs first_t_ns_;
+  TimeNs segment_start_t_ns_;
+  std::optional<loop::SavedMap> map_;
+  OfflineRunResult run_;
+};
 
 }  // namespace vilslam

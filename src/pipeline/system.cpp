@@ -135,7 +135,8 @@ class LidarSide {
       }
     }
     if (shared_->load) {
-      const std::size_t done = result_->lidar.size() + lidar_->unmapped_scans() - lidar_->waiting_scans();
+      const std::size_t done = result_->lidar.size() + result_->lidar_rejected.size() + lidar_->unmapped_scans() -
+                               lidar_->waiting_scans();
       shared_->load->sweeps.done(done - sweeps_done_);
       sweeps_done_ = done;
     }
