@@ -27,13 +27,6 @@ constexpr double kSequenceStartS = 1.0;  // the simulator's first stamp (start_t
 constexpr double kOutageEndS = 11.0;
 constexpr const char* kShortGap = "loop_closure:\n  min_time_gap_s: 4.0\n";  // a lap lasts about 10 s
 
-std::string read_file(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 class LidarLossReset : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -146,7 +139,7 @@ TEST_F(LidarLossReset, TheResetsInstantDependsOnTheDataOnly) {
   ASSERT_NE(outputs_, nullptr);
   for (const char* file : {"lidar.tum", "lidar_final.tum", "lidar_global.tum", "lidar_status.csv", "segments.json",
                            "loops.csv", "vio_camera.tum"}) {
-    EXPECT_EQ(read_file(run("reset") + "/" + file), read_file(run("serial") + "/" + file)) << file;
+    EXPECT_EQ(test::read_file_bytes(run("reset") + "/" + file), test::read_file_bytes(run("serial") + "/" + file)) << file;
   }
 }
 
