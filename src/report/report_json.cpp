@@ -147,6 +147,9 @@ std::string report_json(const ReportData& data, const ReportOptions& options) {
   json.key("data_s").value(data.run.timings.data_s);
   json.key("run_wall_s").value(data.run.timings.run_wall_s);
   if (data.run.timings.realtime_speed) json.key("realtime_speed").value(*data.run.timings.realtime_speed);
+  json.key("lidar_lost_s").begin_array();
+  for (TimeNs t_ns : data.run.timings.lidar_lost_t_ns) json.value(ns_to_s(t_ns - data.t0_ns));
+  json.end_array();
   json.key("gt").value(data.gt_path);
   json.key("notes").begin_array();
   for (const std::string& note : data.notes) json.value(note);

@@ -88,6 +88,16 @@ RunTimings read_timings(const std::string& path) {
   t.data_s = json_number(root, "data_s", path);
   t.run_wall_s = json_number(root, "run_wall_s", path);
   read_summaries(root, path, t.summaries);
+  if (const YAML::Node lost = root["lidar_lost_t_ns"]) {  // absent in runs before 2026-12-06
+    if (!lost.IsSequence()) throw InputError(path, "'lidar_lost_t_ns' is not an array");
+    for (const YAML::Node& t_ns : lost) {
+      try {
+        t.lidar_lost_t_ns.push_back(t_ns.as<TimeNs>());
+      } catch (const YAML::Exception&) {
+        throw InputError(path, "'lidar_lost_t_ns' holds a value that is not an integer time stamp");
+      }
+    }
+  }
   if (const YAML::Node realtime = root["realtime"]) {
     t.realtime_speed = json_number(realtime, "speed", path);
     read_summaries(realtime, path, t.summaries);

@@ -33,6 +33,7 @@ struct RunTimings {
   std::string mode;  // "vio" | "vil" | "lidar-only"
   double data_s = 0, run_wall_s = 0;
   std::optional<double> realtime_speed;      // with --realtime
+  std::vector<TimeNs> lidar_lost_t_ns;       // when LiDAR mapping was lost (a reset followed in vil with loop closure)
   std::vector<TimingSummaryRow> summaries;   // every series of timings.json, latencies last
   std::vector<TimingSamples> samples;        // from timing_samples.csv; empty when the file is absent
 };

@@ -63,6 +63,7 @@ inline void write_synthetic_run(const std::filesystem::path& dir, const std::fil
       << "  \"frontend\": {\"frames\": 200, \"median_ms\": 9, \"p95_ms\": 14, \"max_ms\": 14},\n"
       << "  \"lidar_mapping\": {\"frames\": 200, \"median_ms\": 23, \"p95_ms\": 26, \"max_ms\": 26},\n"
       << "  \"loops_accepted\": 1,\n"
+      << "  \"lidar_lost_t_ns\": [13250000000],\n"
       << "  \"realtime\": {\"speed\": 1.0, \"dropped_sweeps\": 0,\n"
       << "    \"imu_pose_latency\": {\"frames\": 200, \"median_ms\": 0.56, \"p95_ms\": 0.62, \"max_ms\": 0.62}}\n}\n";
 }

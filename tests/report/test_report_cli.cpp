@@ -87,6 +87,9 @@ TEST_F(ReportCli, EventsAndTimingsAreAllThere) {
   EXPECT_EQ(number_after(data, "from_t_s"), 0.5);  // the loop from pose 5 to pose 195, 0.1 s apart
   EXPECT_NEAR(number_after(data, "to_t_s"), 19.5, 1e-12);
   EXPECT_EQ(number_after(data, "realtime_speed"), 1.0);
+  const std::size_t lost = data.find("\"lidar_lost_s\": [");  // when LiDAR mapping was lost, from the first pose at 1 s
+  ASSERT_NE(lost, std::string::npos);
+  EXPECT_EQ(std::stod(data.substr(data.find_first_of("0123456789", lost))), 12.25);
   EXPECT_EQ(number_after(data, "median_ms", data.find("\"series\": \"imu_pose_latency\"")), 0.56);
   for (const char* series : {"frontend", "lidar_mapping", "imu_pose_latency"}) {
     const std::size_t at = data.find("\"series\": \"" + std::string(series) + "\"", data.find("\"histograms\""));
@@ -178,6 +181,8 @@ TEST_F(ReportCli, BadInputExitsTwoWithoutOutput) {
   expect_refused(run_.string(), "timings.json");
   std::ofstream(run_ / "timings.json") << "{\"mode\": \"vil\", \"data_s\": \"long\", \"run_wall_s\": 1}";
   expect_refused(run_.string(), "timings.json: 'data_s' is not a number");
+  std::ofstream(run_ / "timings.json") << "{\"mode\": \"vil\", \"data_s\": 3, \"run_wall_s\": 1, \"lidar_lost_t_ns\": [\"soon\"]}";
+  expect_refused(run_.string(), "timings.json: 'lidar_lost_t_ns' holds a value that is not an integer time stamp");
   fs::remove(run_ / "timings.json");
   expect_refused(run_.string(), "timings.json: missing");
 }

@@ -244,6 +244,9 @@ function header(root, data) {
   for (const t of data.trajectories) if (t.errors) card(t.name + ' ATE RMSE', fmt(t.errors.rmse_m, 3) + ' m');
   if (data.events.loops) card('loop closures', String(data.events.loops.length));
   if (data.events.sweeps !== undefined) card('degenerate sweeps', data.events.degenerate + ' of ' + data.events.sweeps);
+  if (data.lidar_lost_s.length > 0) {
+    card('LiDAR mapping lost at', data.lidar_lost_s.map((t) => fmt(t, 1) + ' s').join(', '));
+  }
   if (data.map && data.map.value_name === 'mre_m') card('map MRE (mean)', fmt(data.map.mre_mean_m, 3) + ' m');
   if (data.notes.length > 0) {
     const notes = el('div', { class: 'notes' }, root);
