@@ -149,9 +149,7 @@ class Node {
   OfflineRunResult finish() {
     subscriptions_.clear();
     publishing_ = false;
-    dropped_frames_ += system_->dropped_frames();
-    dropped_sweeps_ += system_->dropped_sweeps();
-    return segments_ ? segments_->finish(system_->finish()) : system_->finish();
+    return segments_ ? segments_->finish(finish_system()) : finish_system();
   }
   void print_summary(const OfflineRunResult& result) const {
     const LiveInputDrops& d = input_.drops();
@@ -167,11 +165,16 @@ class Node {
   void pushed(TimeNs t_ns) {
     if (!segments_) segments_.emplace(calib_, config_, t_ns);
     if (!reset_on_lost_ || !system_->lidar_lost()) return;
-    dropped_frames_ += system_->dropped_frames();
-    dropped_sweeps_ += system_->dropped_sweeps();
-    const loop::SavedMap& map = segments_->reset(system_->finish(), t_ns);
+    const loop::SavedMap& map = segments_->reset(finish_system(), t_ns);
     system_ = std::make_unique<System>(calib_, segments_->restart_config(), callbacks(), map);
     ROS_WARN("vilslam: LiDAR mapping was lost; the whole state was reset and re-localizes in the map so far");
+  }
+
+  // The current System's outputs, its drops counted with the earlier ones'.
+  OfflineRunResult finish_system() {
+    dropped_frames_ += system_->dropped_frames();
+    dropped_sweeps_ += system_->dropped_sweeps();
+    return system_->finish();
   }
 
   SystemCallbacks callbacks() {

@@ -20,6 +20,10 @@ PoseAtTime constant_velocity(const Vec6& motion, TimeNs duration_ns, TimeNs end_
   };
 }
 
+double elapsed_ms(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
 }  // namespace
 
 // The mapper remaps degenerate directions; 0.03 per match flags the simulated tunnel (its along-axis
@@ -150,7 +154,7 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
   }
   out.vio_prior = has_prior;
   if (out.loss != MappingLoss::kNone) {
-    out.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    out.time_ms = elapsed_ms(start);
     return out;
   }
   out.num_edge_features = static_cast<int>(features.edges.size());
@@ -178,7 +182,7 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
     next.motion_duration_ns = end_t_ns - previous_->end_t_ns;
   }
   previous_ = next;
-  out.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  out.time_ms = elapsed_ms(start);
   return out;
 }
 

@@ -31,14 +31,4 @@ void validate_mapping_loss_config(const MappingLossConfig& c, const std::string&
   if (c.lost_after_rejected < 1) throw InputError(source, "'lidar_mapper.loss.lost_after_rejected' must be at least 1");
 }
 
-std::string mapping_loss_name(MappingLoss loss) {
-  switch (loss) {
-    case MappingLoss::kNone: return "";
-    case MappingLoss::kMismatched: return "mismatched";
-    case MappingLoss::kUnmatched: return "unmatched";
-    case MappingLoss::kJump: return "jump";
-  }
-  return {};
-}
-
 }  // namespace vilslam::lidar

@@ -39,9 +39,6 @@ struct MappingLossConfig {
 // check is off.
 MappingLoss mapping_loss(const SweepFit& fit, const MappingLossConfig& config);
 
-// "mismatched" | "unmatched" | "jump" ("" for kNone).
-std::string mapping_loss_name(MappingLoss loss);
-
 // Throws InputError naming source for thresholds out of range.
 void validate_mapping_loss_config(const MappingLossConfig& config, const std::string& source);
 

@@ -45,7 +45,6 @@ class RunSegments {
 
   // The config of a System after a reset: the robot is likely moving, so the VIO aligns in motion.
   const OfflineRunConfig& restart_config() const { return restart_config_; }
-  TimeNs segment_start_t_ns() const { return segment_start_t_ns_; }
 
  private:
   void close(OfflineRunResult&& segment);

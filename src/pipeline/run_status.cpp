@@ -30,23 +30,6 @@ std::vector<const lidar::LidarMappingResult*> in_time_order(const std::vector<li
   return all;
 }
 
-}  // namespace
-
-std::string lidar_status_csv(const std::vector<lidar::LidarMappingResult>& sweeps,
-                             const std::vector<lidar::LidarMappingResult>& rejected) {
-  std::ostringstream out;
-  out << std::setprecision(17) << "t_ns,status,gap_s,vio_prior,converged,correction_m,correction_deg,degenerate\n";
-  for (const lidar::LidarMappingResult* sweep : in_time_order(sweeps, rejected)) {
-    const lidar::LidarMappingResult& m = *sweep;
-    out << m.t_ns << ',' << lidar::mapping_status_name(lidar::mapping_status(m)) << ',' << m.gap_s << ','
-        << (m.vio_prior ? 1 : 0) << ',' << (m.converged ? 1 : 0) << ',' << m.correction_m << ',' << m.correction_deg
-        << ',' << (m.degenerate ? 1 : 0) << '\n';
-  }
-  return out.str();
-}
-
-namespace {
-
 void add_record(std::vector<StatusStretch>& stretches, const std::string& module, const std::string& status,
                 TimeNs t_ns, double gap_s, double join_s) {
   for (auto it = stretches.rbegin(); it != stretches.rend() && it->module == module; ++it) {
@@ -63,6 +46,19 @@ void add_record(std::vector<StatusStretch>& stretches, const std::string& module
 }
 
 }  // namespace
+
+std::string lidar_status_csv(const std::vector<lidar::LidarMappingResult>& sweeps,
+                             const std::vector<lidar::LidarMappingResult>& rejected) {
+  std::ostringstream out;
+  out << std::setprecision(17) << "t_ns,status,gap_s,vio_prior,converged,correction_m,correction_deg,degenerate\n";
+  for (const lidar::LidarMappingResult* sweep : in_time_order(sweeps, rejected)) {
+    const lidar::LidarMappingResult& m = *sweep;
+    out << m.t_ns << ',' << lidar::mapping_status_name(lidar::mapping_status(m)) << ',' << m.gap_s << ','
+        << (m.vio_prior ? 1 : 0) << ',' << (m.converged ? 1 : 0) << ',' << m.correction_m << ',' << m.correction_deg
+        << ',' << (m.degenerate ? 1 : 0) << '\n';
+  }
+  return out.str();
+}
 
 std::vector<StatusStretch> status_stretches(const OfflineRunResult& run, double join_s) {
   std::vector<StatusStretch> stretches;
