@@ -21,6 +21,7 @@ YamlFields frontend_yaml_fields(FrontendConfig& c) {
       yaml_value("klt_max_iterations", c.klt_max_iterations),
       yaml_value("klt_epsilon", c.klt_epsilon),
       yaml_value("klt_max_forward_backward_px", c.klt_max_forward_backward_px),
+      yaml_value("klt_final_window_px", c.klt_final_window_px),
       yaml_value("klt_anchor_half_px", c.klt_anchor_half_px),
       yaml_value("klt_anchor_max_correction_px", c.klt_anchor_max_correction_px),
       yaml_value("klt_anchor_min_correlation", c.klt_anchor_min_correlation),
@@ -66,6 +67,9 @@ void validate_frontend_config(const FrontendConfig& c, const std::string& source
   require(c.klt_pyramid_levels >= 0 && c.klt_pyramid_levels <= 8, "klt_pyramid_levels must be in [0, 8]");
   require(c.klt_max_iterations > 0 && c.klt_epsilon > 0, "klt_max_iterations and klt_epsilon must be > 0");
   require(c.klt_max_forward_backward_px > 0, "klt_max_forward_backward_px must be > 0");
+  require(c.klt_final_window_px == 0 ||
+              (c.klt_final_window_px >= 5 && c.klt_final_window_px % 2 == 1 && c.klt_final_window_px <= c.klt_window_px),
+          "klt_final_window_px must be 0 (off) or odd, >= 5 and at most klt_window_px");
   require(c.klt_anchor_half_px >= 0 && c.klt_anchor_half_px <= 32, "klt_anchor_half_px must be in [0, 32] (0 = off)");
   require(c.klt_anchor_max_correction_px > 0, "klt_anchor_max_correction_px must be > 0");
   require(c.klt_anchor_min_correlation > -1 && c.klt_anchor_min_correlation < 1,

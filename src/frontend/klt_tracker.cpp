@@ -30,6 +30,16 @@ void track_forward_backward(const ImagePyramid& prev, const ImagePyramid& cur,
   std::vector<float> errors;
   cv::calcOpticalFlowPyrLK(prev, cur, prev_px, *cur_px, forward_ok, errors, window, max_level, klt_criteria(config),
                            flags);
+  if (config.klt_final_window_px > 0) {
+    // The finest level again with the smaller window, from the pyramidal result: the coarse levels keep the large
+    // window's reach, while the final estimate averages the flow over less of a surface whose flow varies across
+    // the window (docs/frontend.md, "The KLT window ... the tunnel's long legs").
+    const cv::Size final_window(config.klt_final_window_px, config.klt_final_window_px);
+    std::vector<uchar> final_ok;
+    cv::calcOpticalFlowPyrLK(prev, cur, prev_px, *cur_px, final_ok, errors, final_window, 0, klt_criteria(config),
+                             cv::OPTFLOW_USE_INITIAL_FLOW);
+    for (std::size_t i = 0; i < forward_ok.size(); ++i) forward_ok[i] = forward_ok[i] && final_ok[i];
+  }
   const cv::Size size = cur.front().size();
   std::vector<std::size_t> forward_kept;
   std::vector<cv::Point2f> kept_cur_px, back_px;
