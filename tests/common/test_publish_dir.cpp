@@ -12,14 +12,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void write_text(const fs::path& path, const std::string& text) {
-  fs::create_directories(path.parent_path());
-  std::ofstream(path) << text;
-}
-
 TEST(PublishDirectory, MovesTheStagingFolderWhereThereWasNone) {
   const fs::path dir = test::temp_dir();
-  write_text(dir / "staging" / "a.txt", "new");
+  test::write_file_bytes(dir / "staging" / "a.txt", "new");
   publish_directory((dir / "staging").string(), (dir / "out").string());
   EXPECT_FALSE(fs::exists(dir / "staging"));
   EXPECT_EQ(test::read_file_bytes(dir / "out" / "a.txt"), "new");
@@ -27,9 +22,9 @@ TEST(PublishDirectory, MovesTheStagingFolderWhereThereWasNone) {
 
 TEST(PublishDirectory, ReplacesThePreviousFolderWholeAndLeavesNothingBehind) {
   const fs::path dir = test::temp_dir();
-  write_text(dir / "out" / "a.txt", "old");
-  write_text(dir / "out" / "only_old" / "b.txt", "old");
-  write_text(dir / "staging" / "a.txt", "new");
+  test::write_file_bytes(dir / "out" / "a.txt", "old");
+  test::write_file_bytes(dir / "out" / "only_old" / "b.txt", "old");
+  test::write_file_bytes(dir / "staging" / "a.txt", "new");
   publish_directory((dir / "staging").string(), (dir / "out").string());
   EXPECT_EQ(test::read_file_bytes(dir / "out" / "a.txt"), "new");
   EXPECT_FALSE(fs::exists(dir / "out" / "only_old"));
@@ -39,7 +34,7 @@ TEST(PublishDirectory, ReplacesThePreviousFolderWholeAndLeavesNothingBehind) {
 
 TEST(PublishDirectory, AMissingStagingFolderIsAnErrorNamingIt) {
   const fs::path dir = test::temp_dir();
-  write_text(dir / "out" / "a.txt", "old");
+  test::write_file_bytes(dir / "out" / "a.txt", "old");
   try {
     publish_directory((dir / "missing").string(), (dir / "out").string());
     FAIL() << "no error";

@@ -8,6 +8,7 @@
 #include "frontend/corner_extractor.h"
 #include "frontend/klt_tracker.h"
 #include "synthetic_stereo.h"
+#include "test_util.h"
 
 namespace vilslam {
 namespace {
@@ -78,8 +79,6 @@ ZoomTracks track_zoom(bool anchored) {
   return out;
 }
 
-double median(const std::vector<double>& sorted) { return sorted[sorted.size() / 2]; }
-
 // Frame-to-frame KLT drifts through the zoom and the brightness step (0.67 px median after ten frames); the
 // anchored warp models both and stays within a few hundredths of a pixel of the point (median).
 TEST(AnchoredPatch, FollowsAZoomAndABrightnessChangeWithoutDrift) {
@@ -88,9 +87,9 @@ TEST(AnchoredPatch, FollowsAZoomAndABrightnessChangeWithoutDrift) {
   ASSERT_GT(anchored.started, 100u);
   ASSERT_GT(anchored.errors_px.size(), 0.9 * anchored.started);
   ASSERT_FALSE(plain.errors_px.empty());
-  EXPECT_LT(median(anchored.errors_px), 0.05);
+  EXPECT_LT(test::median(anchored.errors_px), 0.05);
   EXPECT_LT(anchored.errors_px[anchored.errors_px.size() * 9 / 10], 0.2);
-  EXPECT_LT(median(anchored.errors_px), 0.2 * median(plain.errors_px));
+  EXPECT_LT(test::median(anchored.errors_px), 0.2 * test::median(plain.errors_px));
   // The warp found the zoom and the gain (the median over features; single patches of the blocky texture
   // leave the affine part loose).
   std::vector<double> zoom, gain;
@@ -100,8 +99,8 @@ TEST(AnchoredPatch, FollowsAZoomAndABrightnessChangeWithoutDrift) {
   }
   std::sort(zoom.begin(), zoom.end());
   std::sort(gain.begin(), gain.end());
-  EXPECT_NEAR(median(zoom), std::pow(1.02, 10), 0.02);
-  EXPECT_NEAR(median(gain), 0.85, 0.02);
+  EXPECT_NEAR(test::median(zoom), std::pow(1.02, 10), 0.02);
+  EXPECT_NEAR(test::median(gain), 0.85, 0.02);
 }
 
 TEST(AnchoredPatch, GivesUpOnAnotherPlaceAndLeavesTheTrackAsItWas) {

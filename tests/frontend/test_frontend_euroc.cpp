@@ -11,11 +11,6 @@
 namespace vilslam {
 namespace {
 
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
 // Real EuRoC stereo (V1_01_easy, 95 pairs): enough stereo matches on every pair, sub-pixel stereo geometry.
 TEST(FrontendEuroc, KeepsHundredMatchesWithSubpixelStereoError) {
   VILSLAM_REQUIRE_SHARED_DATA(path, "euroc/V1_01_easy_micro");
@@ -41,9 +36,9 @@ TEST(FrontendEuroc, KeepsHundredMatchesWithSubpixelStereoError) {
   const double max_count = *std::max_element(counts.begin(), counts.end());
   std::printf("EuRoC V1_01 micro: %zu pairs, stereo matches per pair min %.0f median %.0f max %.0f, "
               "extraction on %d pairs, median stereo reprojection error %.3f px over %zu matches\n",
-              counts.size(), min_count, median(counts), max_count, extractions, median(errors_px), errors_px.size());
+              counts.size(), min_count, test::median(counts), max_count, extractions, test::median(errors_px), errors_px.size());
   EXPECT_GE(min_count, 100);
-  EXPECT_LT(median(errors_px), 1.0);
+  EXPECT_LT(test::median(errors_px), 1.0);
 }
 
 }  // namespace

@@ -16,7 +16,6 @@ namespace fs = std::filesystem;
 
 double pose_diff(const SE3& a, const SE3& b) { return (a.matrix() - b.matrix()).cwiseAbs().maxCoeff(); }
 
-void write_text(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::trunc) << text; }
 
 TEST(RigYaml, RoundTripKeepsEveryField) {
   const auto dir = test::temp_dir();
@@ -62,7 +61,7 @@ TEST(RigYaml, MissingFieldAndBadValuesNameTheFile) {
   const auto dir = test::temp_dir();
   const fs::path path = dir / "rig.yaml";
   std::string text = rig_yaml_text(test::synthetic_calibration());
-  write_text(path, text.substr(0, text.find("imu:")));
+  test::write_file_bytes(path, text.substr(0, text.find("imu:")));
   try {
     read_rig_yaml(path.string());
     FAIL();
@@ -71,12 +70,12 @@ TEST(RigYaml, MissingFieldAndBadValuesNameTheFile) {
     EXPECT_NE(std::string(e.what()).find("missing section 'imu'"), std::string::npos) << e.what();
   }
   const auto pos = text.find("intrinsics: [");
-  write_text(path, text.substr(0, pos) + "intrinsics: [-5, " + text.substr(pos + 13));
+  test::write_file_bytes(path, text.substr(0, pos) + "intrinsics: [-5, " + text.substr(pos + 13));
   EXPECT_THROW(read_rig_yaml(path.string()), InputError);
-  write_text(path, text + "\n  : : [\n");
+  test::write_file_bytes(path, text + "\n  : : [\n");
   EXPECT_THROW(read_rig_yaml(path.string()), InputError);
   const auto lidar_rate = text.find("rate_hz", text.find("lidar:"));  // per-point times come from it
-  write_text(path, text.substr(0, lidar_rate) + "rate_hz: 0\n" + text.substr(text.find('\n', lidar_rate) + 1));
+  test::write_file_bytes(path, text.substr(0, lidar_rate) + "rate_hz: 0\n" + text.substr(text.find('\n', lidar_rate) + 1));
   try {
     read_rig_yaml(path.string());
     FAIL();
@@ -135,8 +134,8 @@ TEST(KalibrCamchain, ReadsIntrinsicsAndComposesExtrinsics) {
   const SE3 T_I_C0(so3::exp(Vec3(0.02, -0.01, 1.58)), Vec3(-0.0216, -0.0647, 0.0098));
   const SE3 T_I_C1(so3::exp(Vec3(0.03, -0.01, 1.57)), Vec3(-0.0198, 0.0454, 0.0079));
   for (const bool with_T_cam_imu : {true, false}) {
-    write_text(dir / "camchain.yaml", kalibr_camchain(T_I_C0.inverse(), T_I_C1.inverse(), with_T_cam_imu));
-    write_text(dir / "imu.yaml",
+    test::write_file_bytes(dir / "camchain.yaml", kalibr_camchain(T_I_C0.inverse(), T_I_C1.inverse(), with_T_cam_imu));
+    test::write_file_bytes(dir / "imu.yaml",
                "accelerometer_noise_density: 0.002\naccelerometer_random_walk: 0.003\n"
                "gyroscope_noise_density: 0.00016968\ngyroscope_random_walk: 1.9393e-05\n"
                "rostopic: /imu0\nupdate_rate: 200.0\n");
@@ -159,9 +158,9 @@ TEST(KalibrCamchain, RejectsNonPinholeAndBadRotations) {
   const auto dir = test::temp_dir();
   const fs::path path = dir / "camchain.yaml";
   std::string text = kalibr_camchain(SE3(), SE3(Quat::Identity(), Vec3(-0.11, 0, 0)), true);
-  write_text(path, std::string(text).replace(text.find("pinhole"), 7, "omni"));
+  test::write_file_bytes(path, std::string(text).replace(text.find("pinhole"), 7, "omni"));
   EXPECT_THROW(read_kalibr_camchain(path.string()), InputError);
-  write_text(path, std::string(text).replace(text.find("  - [1, 0, 0"), 12, "  - [1, 0.2, 0"));
+  test::write_file_bytes(path, std::string(text).replace(text.find("  - [1, 0, 0"), 12, "  - [1, 0.2, 0"));
   try {
     read_kalibr_camchain(path.string());
     FAIL();

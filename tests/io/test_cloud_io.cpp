@@ -42,10 +42,6 @@ void expect_bit_identical(const PointCloud& written, const PointCloud& read) {
   }
 }
 
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-}
-
 std::string error_of(const std::string& path) {
   try {
     read_cloud(path);
@@ -96,7 +92,7 @@ TEST(CloudIo, ReadsKittiBin) {
 
 TEST(CloudIo, ReadsAsciiPlySkippingOtherProperties) {
   const fs::path path = test::temp_dir() / "a.ply";
-  write_text(path,
+  test::write_file_bytes(path,
              "ply\nformat ascii 1.0\ncomment test\nelement vertex 2\nproperty uchar red\nproperty double x\n"
              "property float y\nproperty float z\nproperty float intensity\nelement face 1\n"
              "property list uchar int vertex_indices\nend_header\n7 1.5 2 3 9\n8 -1 -2 -3.5 4\n3 0 1 1\n");
@@ -122,7 +118,7 @@ TEST(CloudIo, ReadsBinaryPlyWithMixedTypesAndPrecedingElement) {
   append(-1.0f);
   append(std::uint8_t{200});
   append(8.0f);
-  write_text(path, bytes);
+  test::write_file_bytes(path, bytes);
   const PointCloud cloud = read_cloud(path.string());
   ASSERT_EQ(cloud.size(), 1u);
   EXPECT_EQ(cloud.points[0], Eigen::Vector3f(4.25f, -1.0f, 8.0f));
@@ -131,7 +127,7 @@ TEST(CloudIo, ReadsBinaryPlyWithMixedTypesAndPrecedingElement) {
 
 TEST(CloudIo, ReadsAsciiPcdSkippingOtherFields) {
   const fs::path path = test::temp_dir() / "a.pcd";
-  write_text(path,
+  test::write_file_bytes(path,
              "# comment\nVERSION 0.7\nFIELDS x y z rgb normal intensity\nSIZE 4 4 4 4 4 2\nTYPE F F F U F U\n"
              "COUNT 1 1 1 1 3 1\nWIDTH 2\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2\nDATA ascii\n"
              "1 2 3 255 0 0 1 17\n-4 5.5 6 0 1 0 0 3\n");
@@ -144,21 +140,21 @@ TEST(CloudIo, ReadsAsciiPcdSkippingOtherFields) {
 TEST(CloudIo, BadInputsThrowInputErrorNamingTheFile) {
   const fs::path dir = test::temp_dir();
   EXPECT_NE(error_of((dir / "absent.pcd").string()).find("does not exist"), std::string::npos);
-  write_text(dir / "x.las", "abc");
+  test::write_file_bytes(dir / "x.las", "abc");
   EXPECT_NE(error_of((dir / "x.las").string()).find("extension"), std::string::npos);
-  write_text(dir / "h.ply", "plx\nformat ascii 1.0\nend_header\n");
+  test::write_file_bytes(dir / "h.ply", "plx\nformat ascii 1.0\nend_header\n");
   EXPECT_NE(error_of((dir / "h.ply").string()).find("bad header"), std::string::npos);
-  write_text(dir / "be.ply", "ply\nformat binary_big_endian 1.0\nelement vertex 0\nend_header\n");
+  test::write_file_bytes(dir / "be.ply", "ply\nformat binary_big_endian 1.0\nelement vertex 0\nend_header\n");
   EXPECT_NE(error_of((dir / "be.ply").string()).find("binary_big_endian"), std::string::npos);
-  write_text(dir / "nodata.pcd", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 1\n");
+  test::write_file_bytes(dir / "nodata.pcd", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 1\n");
   EXPECT_NE(error_of((dir / "nodata.pcd").string()).find("bad header"), std::string::npos);
-  write_text(dir / "c.pcd", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 1\nDATA binary_compressed\n");
+  test::write_file_bytes(dir / "c.pcd", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 1\nDATA binary_compressed\n");
   EXPECT_NE(error_of((dir / "c.pcd").string()).find("no size header"), std::string::npos);
-  write_text(dir / "t.bin", std::string(20, '\0'));
+  test::write_file_bytes(dir / "t.bin", std::string(20, '\0'));
   EXPECT_NE(error_of((dir / "t.bin").string()).find("truncated"), std::string::npos);
-  write_text(dir / "word.pcd", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 1\nDATA ascii\n1 two 3\n");
+  test::write_file_bytes(dir / "word.pcd", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 1\nDATA ascii\n1 two 3\n");
   EXPECT_NE(error_of((dir / "word.pcd").string()).find("word.pcd:6: not a number"), std::string::npos);
-  write_text(dir / "nan.pcd", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 2\nDATA ascii\n1 2 3\nnan 0 0\n");
+  test::write_file_bytes(dir / "nan.pcd", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 2\nDATA ascii\n1 2 3\nnan 0 0\n");
   EXPECT_NE(error_of((dir / "nan.pcd").string()).find("point 1 has a non-finite"), std::string::npos);
 
   const std::string good_ply = (dir / "good.ply").string();

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "rosbag_test_util.h"
+#include "shared_simulation.h"
 #include "test_util.h"
 
 namespace vilslam {
@@ -19,14 +20,15 @@ class RosbagRun : public ::testing::Test {
     dir_ = new fs::path(test::process_temp_root() / "RosbagRun");
     fs::remove_all(*dir_);
     fs::create_directories(*dir_);
-    const auto sim = test::run_cli("simulate highbay --preview --seed 3 --out " + folder().string());
-    ASSERT_EQ(sim.exit_code, 0) << sim.output;
+    folder_ = new fs::path(test::shared_simulation("highbay --preview --seed 3"));
+    ASSERT_FALSE(folder_->empty());
   }
   static void TearDownTestSuite() {
     fs::remove_all(*dir_);
     delete dir_;
+    delete folder_;
   }
-  static fs::path folder() { return *dir_ / "highbay"; }
+  static fs::path folder() { return *folder_; }  // the shared simulation (read only)
 
   // Runs `run --mode vil` on the dataset; returns the output folder.
   static fs::path run(const std::string& dataset, const std::string& name) {
@@ -51,9 +53,11 @@ class RosbagRun : public ::testing::Test {
   }
 
   static fs::path* dir_;
+  static fs::path* folder_;
 };
 
 fs::path* RosbagRun::dir_ = nullptr;
+fs::path* RosbagRun::folder_ = nullptr;
 
 TEST_F(RosbagRun, PythonWrittenBagGivesTheFolderTrajectory) {
   VILSLAM_REQUIRE_PYTHON_ROSBAG();

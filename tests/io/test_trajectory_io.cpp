@@ -36,7 +36,6 @@ void expect_same(const Trajectory& a, const Trajectory& b, double tol) {
   }
 }
 
-void write_text(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
 
 // Expects read_trajectory to throw an InputError naming the file and the given line.
 void expect_input_error(const fs::path& path, TrajectoryFormat format, long line, const std::string& what) {
@@ -73,21 +72,21 @@ TEST(TrajectoryIo, KittiRoundTripWithIndexTimes) {
 
 TEST(TrajectoryIo, KittiTimesFile) {
   const fs::path dir = test::temp_dir();
-  write_text(dir / "p.txt", "1 0 0 1 0 1 0 2 0 0 1 3\n1 0 0 4 0 1 0 5 0 0 1 6\n");
-  write_text(dir / "t.txt", "0.5\n1.25e0\n");
+  test::write_file_bytes(dir / "p.txt", "1 0 0 1 0 1 0 2 0 0 1 3\n1 0 0 4 0 1 0 5 0 0 1 6\n");
+  test::write_file_bytes(dir / "t.txt", "0.5\n1.25e0\n");
   const Trajectory traj = read_trajectory((dir / "p.txt").string(), TrajectoryFormat::kKitti, (dir / "t.txt").string());
   ASSERT_EQ(traj.size(), 2u);
   EXPECT_EQ(traj[0].t_ns, 500'000'000);
   EXPECT_EQ(traj[1].t_ns, 1'250'000'000);
   EXPECT_EQ(traj[1].T_W_B.translation(), Vec3(4, 5, 6));
-  write_text(dir / "t3.txt", "0.5\n1\n2\n");
+  test::write_file_bytes(dir / "t3.txt", "0.5\n1\n2\n");
   EXPECT_THROW(read_trajectory((dir / "p.txt").string(), TrajectoryFormat::kKitti, (dir / "t3.txt").string()),
                InputError);
 }
 
 TEST(TrajectoryIo, TumSecondsAreReadWithoutRoundingThroughDouble) {
   const fs::path dir = test::temp_dir();
-  write_text(dir / "a.txt",
+  test::write_file_bytes(dir / "a.txt",
              "# t x y z qx qy qz qw\n1.403715529112143517e+09 0 0 0 0 0 0 1\n1403715529.2121431835 0 0 0 0 0 0 1\n");
   const Trajectory traj = read_trajectory((dir / "a.txt").string(), TrajectoryFormat::kTum);
   ASSERT_EQ(traj.size(), 2u);
@@ -97,7 +96,7 @@ TEST(TrajectoryIo, TumSecondsAreReadWithoutRoundingThroughDouble) {
 
 TEST(TrajectoryIo, EurocIgnoresExtraStateColumns) {
   const fs::path dir = test::temp_dir();
-  write_text(dir / "a.csv",
+  test::write_file_bytes(dir / "a.csv",
              "#timestamp, p, q, v, b_w, b_a\n"
              "100,1,2,3,0.5,0.5,0.5,0.5,9,9,9,8,8,8,7,7,7\n200, 4, 5, 6, 1, 0, 0, 0\n");
   const Trajectory traj = read_trajectory((dir / "a.csv").string(), TrajectoryFormat::kEuroc);
@@ -126,14 +125,14 @@ TEST(TrajectoryIo, BadInputsNameFileAndLine) {
   };
   for (const auto& c : cases) {
     const fs::path path = dir / (std::string(c.name) + ".txt");
-    write_text(path, c.text);
+    test::write_file_bytes(path, c.text);
     expect_input_error(path, TrajectoryFormat::kTum, c.line, c.name);
   }
-  write_text(dir / "k.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n1 0 0 0 0 1 0 0 0 0 2 0\n");
+  test::write_file_bytes(dir / "k.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n1 0 0 0 0 1 0 0 0 0 2 0\n");
   expect_input_error(dir / "k.txt", TrajectoryFormat::kKitti, 2, "non-orthonormal rotation");
-  write_text(dir / "e.csv", "#t\n100,1,2,3,1,0,0,0\n100x,1,2,3,1,0,0,0\n");
+  test::write_file_bytes(dir / "e.csv", "#t\n100,1,2,3,1,0,0,0\n100x,1,2,3,1,0,0,0\n");
   expect_input_error(dir / "e.csv", TrajectoryFormat::kEuroc, 3, "bad ns timestamp");
-  write_text(dir / "e2.csv", "100,1,2,3,1,0,0,0,5\n");
+  test::write_file_bytes(dir / "e2.csv", "100,1,2,3,1,0,0,0,5\n");
   expect_input_error(dir / "e2.csv", TrajectoryFormat::kEuroc, 1, "euroc column count");
   expect_input_error(dir / "missing.txt", TrajectoryFormat::kTum, 0, "missing file");
 }
@@ -178,15 +177,15 @@ TEST(TrajectoryIo, ReadsSharedEurocAndTumFiles) {
 // back is still an error naming its line, also after a repeat.
 TEST(TrajectoryIo, RepeatedTimeDropsTheRowDecreasingTimeIsAnError) {
   const fs::path dir = test::temp_dir();
-  write_text(dir / "r.txt", "1.0 1 0 0 0 0 0 1\n2.0 2 0 0 0 0 0 1\n2.0 9 0 0 0 0 0 1\n3.0 3 0 0 0 0 0 1\n");
+  test::write_file_bytes(dir / "r.txt", "1.0 1 0 0 0 0 0 1\n2.0 2 0 0 0 0 0 1\n2.0 9 0 0 0 0 0 1\n3.0 3 0 0 0 0 0 1\n");
   const Trajectory traj = read_trajectory((dir / "r.txt").string(), TrajectoryFormat::kTum);
   ASSERT_EQ(traj.size(), 3u);
   EXPECT_EQ(traj[1].t_ns, 2 * kNsPerSecond);
   EXPECT_EQ(traj[1].T_W_B.translation().x(), 2.0);
   EXPECT_EQ(traj[2].T_W_B.translation().x(), 3.0);
-  write_text(dir / "e.csv", "100,1,2,3,1,0,0,0\n100,4,5,6,1,0,0,0\n");
+  test::write_file_bytes(dir / "e.csv", "100,1,2,3,1,0,0,0\n100,4,5,6,1,0,0,0\n");
   ASSERT_EQ(read_trajectory((dir / "e.csv").string(), TrajectoryFormat::kEuroc).size(), 1u);
-  write_text(dir / "d.txt", "1.0 1 0 0 0 0 0 1\n2.0 2 0 0 0 0 0 1\n2.0 9 0 0 0 0 0 1\n1.5 3 0 0 0 0 0 1\n");
+  test::write_file_bytes(dir / "d.txt", "1.0 1 0 0 0 0 0 1\n2.0 2 0 0 0 0 0 1\n2.0 9 0 0 0 0 0 1\n1.5 3 0 0 0 0 0 1\n");
   expect_input_error(dir / "d.txt", TrajectoryFormat::kTum, 4, "decreasing after a repeat");
 }
 

@@ -126,4 +126,10 @@ inline double distance_to_scene_edges(const Scene& scene, const Vec3& p, bool ve
   return best;
 }
 
+// Moving at 3 m/s forward with a 60 deg/s yaw rate: 0.3 m and 6 deg over a 0.1 s sweep.
+inline SE3 moving_pose(TimeNs t_ns) {
+  const double t = ns_to_s(t_ns);
+  return SE3(so3::exp(Vec3(0, 0, 60.0 * M_PI / 180.0 * t)), Vec3(3.0 * t - 1.0, 0.5, 0.2));
+}
+
 }  // namespace vilslam::test

@@ -8,12 +8,6 @@
 namespace vilslam::lidar {
 namespace {
 
-// Moving at 3 m/s with a 60 deg/s yaw rate; the points are in the LiDAR frame at their own instant.
-SE3 moving_pose(TimeNs t_ns) {
-  const double t = ns_to_s(t_ns);
-  return SE3(so3::exp(Vec3(0, 0, 60.0 * M_PI / 180.0 * t)), Vec3(3.0 * t - 1.0, 0.5, 0.2));
-}
-
 std::vector<float> times_of(const LidarScan& scan) {
   std::vector<float> t;
   for (const LidarPoint& p : scan.points) t.push_back(p.t_offset_s);
@@ -33,7 +27,7 @@ double largest_time_error(LidarScan scan) {
 
 TEST(AzimuthTimes, RecoverTheFiringTimesInAnyPointOrderAndSpinDirection) {
   // 1,800 columns of 16 rings, counter-clockwise from -180 deg over 0.1 s, listed column by column.
-  const LidarScan raw = test::sweep(test::box_room(), moving_pose, 0);
+  const LidarScan raw = test::sweep(test::box_room(), test::moving_pose, 0);
   ASSERT_TRUE(has_point_times(raw));
   EXPECT_LT(largest_time_error(raw), 1e-6);
 
@@ -82,7 +76,7 @@ TEST(AzimuthTimes, PointsAtTheStartAzimuthOpenOrCloseTheSweepByFileOrder) {
 }
 
 TEST(AzimuthTimes, OnlySpinningSweepsWithoutTimesAreFilled) {
-  const LidarScan raw = test::sweep(test::box_room(), moving_pose, 0);
+  const LidarScan raw = test::sweep(test::box_room(), test::moving_pose, 0);
   LidarIntrinsics spinning;  // 16 rings at 10 Hz
   LidarScan with_times = raw;
   EXPECT_FALSE(fill_missing_point_times(with_times, spinning));

@@ -60,11 +60,10 @@ std::string read_text(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
-void write_text(const fs::path& p, const std::string& s) { std::ofstream(p, std::ios::binary) << s; }
 void replace_in_file(const fs::path& p, const std::string& from, const std::string& to) {
   std::string text = read_text(p);
   text.replace(text.find(from), from.size(), to);
-  write_text(p, text);
+  test::write_file_bytes(p, text);
 }
 
 // load_map throws an InputError naming the file `name` of dir, with `problem` in its message.
@@ -138,24 +137,24 @@ TEST(MapFile, BadOrIncompleteMapsNameTheFile) {
   }
   {
     const fs::path dir = variant("foreign_yaml");
-    write_text(dir / "map.yaml", "format: something-else\n");
+    test::write_file_bytes(dir / "map.yaml", "format: something-else\n");
     expect_refused(dir, "map.yaml", "not a vilslam map");
   }
   for (const std::size_t cut : {std::size_t{5}, std::size_t{40}, bin.size() / 2, bin.size() - 1}) {
     const fs::path dir = variant("cut" + std::to_string(cut));
-    write_text(dir / "key_frames.bin", bin.substr(0, cut));
+    test::write_file_bytes(dir / "key_frames.bin", bin.substr(0, cut));
     expect_refused(dir, "key_frames.bin", "truncated");
   }
   {
     const fs::path dir = variant("trailing");
-    write_text(dir / "key_frames.bin", bin + "x");
+    test::write_file_bytes(dir / "key_frames.bin", bin + "x");
     expect_refused(dir, "key_frames.bin", "trailing bytes");
   }
   {
     const fs::path dir = variant("magic");
     std::string b = bin;
     b[0] = 'X';
-    write_text(dir / "key_frames.bin", b);
+    test::write_file_bytes(dir / "key_frames.bin", b);
     expect_refused(dir, "key_frames.bin", "bad magic");
   }
   {
@@ -166,7 +165,7 @@ TEST(MapFile, BadOrIncompleteMapsNameTheFile) {
     const std::size_t at = 17 + 4 + 8 + 8 + 8 + 8 + 8 + 7 * 8;
     const std::uint32_t rows = 4'000'000'000u;
     b.replace(at, 4, reinterpret_cast<const char*>(&rows), 4);
-    write_text(dir / "key_frames.bin", b);
+    test::write_file_bytes(dir / "key_frames.bin", b);
     expect_refused(dir, "key_frames.bin", "do not fit");
   }
   {
@@ -174,7 +173,7 @@ TEST(MapFile, BadOrIncompleteMapsNameTheFile) {
     std::string b = bin;
     const double nan = std::nan("");
     b.replace(17 + 4 + 8 + 8 + 8 + 8, 8, reinterpret_cast<const char*>(&nan), 8);  // the focal length
-    write_text(dir / "key_frames.bin", b);
+    test::write_file_bytes(dir / "key_frames.bin", b);
     expect_refused(dir, "key_frames.bin", "non-finite");
   }
   {
@@ -183,7 +182,7 @@ TEST(MapFile, BadOrIncompleteMapsNameTheFile) {
     std::string tum = read_text(dir / "poses.tum");
     std::size_t at = 0;
     for (int line = 0; line < 11; ++line) at = tum.find('\n', at) + 1;
-    write_text(dir / "poses.tum", tum.substr(0, at));
+    test::write_file_bytes(dir / "poses.tum", tum.substr(0, at));
     replace_in_file(dir / "map.yaml", "poses: 30", "poses: 10");
     expect_refused(dir, "key_frames.bin", "beyond poses.tum");
   }
@@ -221,9 +220,9 @@ TEST(MapFile, ForeignVocabularyOrRigIsRefused) {
 
 TEST(MapFile, VocabularyIdentityIsOfTheFilesBytes) {
   const fs::path dir = test::temp_dir();
-  write_text(dir / "a.voc", "same bytes");
-  write_text(dir / "b.voc", "same bytes");
-  write_text(dir / "c.voc", "same bytez");
+  test::write_file_bytes(dir / "a.voc", "same bytes");
+  test::write_file_bytes(dir / "b.voc", "same bytes");
+  test::write_file_bytes(dir / "c.voc", "same bytez");
   EXPECT_EQ(vocabulary_identity((dir / "a.voc").string()), vocabulary_identity((dir / "b.voc").string()));
   EXPECT_NE(vocabulary_identity((dir / "a.voc").string()), vocabulary_identity((dir / "c.voc").string()));
   EXPECT_THROW(vocabulary_identity((dir / "missing.voc").string()), InputError);
@@ -240,7 +239,7 @@ TEST(MapInfoCli, ReadsAGoodMapAndRefusesABadOneWithExitTwo) {
   EXPECT_EQ(r.exit_code, 2) << r.output;  // not the shipped vocabulary's identity
   EXPECT_NE(r.output.find("map.yaml"), std::string::npos) << r.output;
   const std::string bin = read_text(dir / "key_frames.bin");
-  write_text(dir / "key_frames.bin", bin.substr(0, bin.size() / 3));
+  test::write_file_bytes(dir / "key_frames.bin", bin.substr(0, bin.size() / 3));
   r = test::run_cli("map-info " + dir.string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("key_frames.bin"), std::string::npos) << r.output;

@@ -1,5 +1,5 @@
 #pragma once
-// `simulate highbay --preview --seed 3 --ideal-sensors`, written once per test process, and its ground-truth
+// `simulate highbay --preview --seed 3 --ideal-sensors`, simulated once for all the test processes, and its ground-truth
 // LiDAR poses. Ideal sensors: the map tests measure maps built from the true poses against the world, and
 // with realism the LiDAR's true mount is 0.5 deg / 1 cm off the nominal T_I_L these poses go through.
 #include <gtest/gtest.h>
@@ -8,23 +8,17 @@
 #include <string>
 
 #include "io/dataset.h"
+#include "shared_simulation.h"
 #include "test_util.h"
 
 namespace vilslam::test {
 
 constexpr std::uint64_t kHighbaySeed = 3;
 
-// Path of the simulated dataset ("" after a failure, which is reported).
+// Path of the simulated dataset ("" after a failure, which is reported); shared by the test processes.
 inline const std::string& highbay_preview() {
-  static const std::string path = [] {
-    const std::filesystem::path dir =
-        process_temp_root() / "map_highbay_seed3";
-    std::filesystem::remove_all(dir);
-    const CliResult sim = run_cli("simulate highbay --preview --seed " + std::to_string(kHighbaySeed) +
-                                  " --ideal-sensors --out " + dir.string());
-    EXPECT_EQ(sim.exit_code, 0) << sim.output;
-    return sim.exit_code == 0 ? dir.string() : std::string();
-  }();
+  static const std::string path =
+      shared_simulation("highbay --preview --seed " + std::to_string(kHighbaySeed) + " --ideal-sensors");
   return path;
 }
 

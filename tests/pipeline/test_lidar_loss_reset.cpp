@@ -16,6 +16,7 @@
 
 #include "common/time.h"
 #include "io/trajectory_io.h"
+#include "shared_simulation.h"
 #include "test_util.h"
 
 namespace vilslam {
@@ -33,11 +34,8 @@ class LidarLossReset : public ::testing::Test {
     root_ = new fs::path(test::process_temp_root() / "lidar_loss_reset");
     fs::remove_all(*root_);
     fs::create_directories(*root_);
-    std::ofstream(*root_ / "outage.yaml") << "faults:\n  camera_blackouts: [[7.0, 11.0]]\n  lidar_dropouts: [[7.0, 11.0]]\n"
-                                             "  imu_gaps: [[7.0, 11.0]]\n";
-    const test::CliResult sim = test::run_cli("simulate room --length 8 --seed 2 --laps 2 --config " +
-                                              (*root_ / "outage.yaml").string() + " --out " + data());
-    ASSERT_EQ(sim.exit_code, 0) << sim.output;
+    data_ = new std::string(test::shared_simulation("room --length 8 --seed 2 --laps 2", test::kRoomRigOutageConfig));
+    ASSERT_FALSE(data_->empty());
     const std::vector<std::pair<std::string, std::string>> runs = {
         {"reset", ""},
         {"serial", "pipeline:\n  threads: false\n"},
@@ -53,9 +51,10 @@ class LidarLossReset : public ::testing::Test {
   }
   static void TearDownTestSuite() {
     delete root_;
+    delete data_;
     delete outputs_;
   }
-  static std::string data() { return (*root_ / "data").string(); }
+  static std::string data() { return *data_; }
   static std::string run(const std::string& name) { return (*root_ / name).string(); }
   static const std::string& output(std::size_t i) { return (*outputs_)[i].output; }
   // SE(3)-aligned APE RMSE (m) of a run's loop-closed LiDAR poses.
@@ -83,9 +82,11 @@ class LidarLossReset : public ::testing::Test {
   }
 
   static fs::path* root_;
+  static std::string* data_;  // the shared simulation (read only)
   static std::vector<test::CliResult>* outputs_;  // reset, serial, no_reset, unchecked
 };
 fs::path* LidarLossReset::root_ = nullptr;
+std::string* LidarLossReset::data_ = nullptr;
 std::vector<test::CliResult>* LidarLossReset::outputs_ = nullptr;
 
 TEST_F(LidarLossReset, TheMapperDeclaresItselfLostAndTheNewSegmentJoinsTheMap) {

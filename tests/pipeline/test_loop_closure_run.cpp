@@ -16,6 +16,7 @@
 #include "pipeline/time_offset_pass.h"
 #include "sim/calibration_errors.h"
 #include "delayed_camera_reader.h"
+#include "shared_simulation.h"
 #include "test_util.h"
 
 namespace vilslam {
@@ -32,9 +33,8 @@ class LoopClosureRun : public ::testing::Test {
     const fs::path dir = test::process_temp_root() / "room8";
     fs::remove_all(dir);
     fs::create_directories(dir);
-    data_ = new fs::path(dir / "data");
-    const test::CliResult sim = test::run_cli("simulate room --length 8 --seed 2 --out " + data_->string());
-    ASSERT_EQ(sim.exit_code, 0) << sim.output;
+    data_ = new fs::path(test::shared_simulation("room --length 8 --seed 2"));
+    ASSERT_FALSE(data_->empty());
     std::ofstream(dir / "short_gap.yaml") << kShortGapConfig;
     std::ofstream(dir / "off.yaml") << kShortGapConfig << "  enabled: false\n";
     std::ofstream(dir / "one_thread.yaml") << kShortGapConfig << "pipeline:\n  threads: false\n";

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "io/trajectory_io.h"
+#include "shared_simulation.h"
 #include "test_util.h"
 #include "thread_sanitized.h"
 
@@ -24,16 +25,15 @@ class RealtimeRun : public ::testing::Test {
     const fs::path dir = test::process_temp_root() / "room8_realtime";
     fs::remove_all(dir);
     fs::create_directories(dir);
-    const fs::path data = dir / "data";
-    const test::CliResult sim = test::run_cli("simulate room --length 8 --seed 2 --out " + data.string());
-    ASSERT_EQ(sim.exit_code, 0) << sim.output;
+    const std::string data = test::shared_simulation("room --length 8 --seed 2");
+    ASSERT_FALSE(data.empty());
     // Real time is 1x for a machine that keeps up: a sanitized build runs 3-15 times slower (under AddressSanitizer
     // at 1x, 179 of 210 pairs were dropped and the VIO, given one frame in seven, lost track), so its clock is slowed.
     const std::string live_speed = test::kThreadSanitized ? "0.1" : (VILSLAM_SANITIZED ? "0.2" : "1");
     for (const auto& [run, speed] :
          {std::pair<std::string, std::string>{"offline", ""}, {"realtime", live_speed}, {"overload", "1000"}}) {
       const std::string pacing = speed.empty() ? "" : " --realtime " + speed;
-      const test::CliResult r = test::run_cli("run --mode vil " + data.string() + pacing + " --out " + (dir / run).string());
+      const test::CliResult r = test::run_cli("run --mode vil " + data + pacing + " --out " + (dir / run).string());
       ASSERT_EQ(r.exit_code, 0) << r.output;
     }
     runs_ = new fs::path(dir);

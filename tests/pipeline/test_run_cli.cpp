@@ -10,6 +10,7 @@
 #include "eval/trajectory_eval.h"
 #include "io/dataset.h"
 #include "io/trajectory_io.h"
+#include "shared_simulation.h"
 #include "test_util.h"
 
 namespace vilslam {
@@ -74,15 +75,12 @@ TEST(RunCli, BadInputExitsTwo) {
   EXPECT_FALSE(fs::exists(dir / "o"));
 }
 
-// `simulate highbay --preview --seed 3`, written once for the tests below.
+// `simulate highbay --preview --seed 3` (shared with other test processes), for the tests below.
 class SimulatedHighbay : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    const fs::path dir = test::process_temp_root() / "highbay_seed3";
-    fs::remove_all(dir);
-    data_ = new std::string(dir.string());
-    const test::CliResult sim = test::run_cli("simulate highbay --preview --seed 3 --out " + *data_);
-    ASSERT_EQ(sim.exit_code, 0) << sim.output;
+    data_ = new std::string(test::shared_simulation("highbay --preview --seed 3"));
+    ASSERT_FALSE(data_->empty());
   }
   static void TearDownTestSuite() {
     delete data_;

@@ -17,6 +17,7 @@
 #include "io/trajectory_io.h"
 #include "pipeline/offline_runner.h"
 #include "pipeline/system.h"
+#include "shared_simulation.h"
 #include "test_util.h"
 #include "thread_sanitized.h"
 
@@ -42,11 +43,8 @@ Trajectory lidar_poses(const std::vector<lidar::LidarMappingResult>& mapped) {
 class SystemApi : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    const fs::path dir = test::process_temp_root() / "room8_system";
-    fs::remove_all(dir);
-    data_ = new std::string((dir / "data").string());
-    const test::CliResult sim = test::run_cli("simulate room --length 8 --seed 2 --out " + *data_);
-    ASSERT_EQ(sim.exit_code, 0) << sim.output;
+    data_ = new std::string(test::shared_simulation("room --length 8 --seed 2"));
+    ASSERT_FALSE(data_->empty());
   }
   static void TearDownTestSuite() { delete data_; }
   static OfflineRunConfig config() {

@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "io/trajectory_io.h"
+#include "shared_simulation.h"
 #include "test_util.h"
 #include "thread_sanitized.h"
 
@@ -115,13 +116,14 @@ TEST(RosNode, LiveNodePublishesTheOfflineTrajectory) {
   const fs::path dir = test::process_temp_root() / "RosNode";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const fs::path data = dir / "room", bag = dir / "room.bag";
+  const fs::path bag = dir / "room.bag";
   // Realistic sensors (the default): the camera's 3 ms clock offset puts the frames between IMU samples, where a live frame
   // that arrives after the next sample must still give the offline state (Vio's samples_for_frame).
-  ASSERT_EQ(test::run_cli("simulate room --length 8 --seed 2 --out " + data.string()).exit_code, 0);
-  const auto exported = test::run_cli("export-bag " + data.string() + " --out " + bag.string());
+  const std::string data = test::shared_simulation("room --length 8 --seed 2");
+  ASSERT_FALSE(data.empty());
+  const auto exported = test::run_cli("export-bag " + data + " --out " + bag.string());
   ASSERT_EQ(exported.exit_code, 0) << exported.output;
-  const auto offline = test::run_cli("run --mode vil " + data.string() + " --out " + (dir / "offline").string());
+  const auto offline = test::run_cli("run --mode vil " + data + " --out " + (dir / "offline").string());
   ASSERT_EQ(offline.exit_code, 0) << offline.output;
 
   const LiveRun live = play_through_node(dir, "room", "");
@@ -179,14 +181,10 @@ TEST(RosNode, LiveNodeResetsWhenLidarMappingIsLost) {
   const fs::path dir = test::process_temp_root() / "RosNodeReset";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const fs::path data = dir / "room";
-  std::ofstream(dir / "outage.yaml") << "faults:\n  camera_blackouts: [[7.0, 11.0]]\n  lidar_dropouts: [[7.0, 11.0]]\n"
-                                        "  imu_gaps: [[7.0, 11.0]]\n";
   std::ofstream(dir / "run.yaml") << "loop_closure:\n  min_time_gap_s: 4.0\n";  // a lap lasts about 10 s
-  const auto sim = test::run_cli("simulate room --length 8 --seed 2 --laps 2 --config " + (dir / "outage.yaml").string() +
-                                 " --out " + data.string());
-  ASSERT_EQ(sim.exit_code, 0) << sim.output;
-  const auto exported = test::run_cli("export-bag " + data.string() + " --out " + (dir / "room.bag").string());
+  const std::string data = test::shared_simulation("room --length 8 --seed 2 --laps 2", test::kRoomRigOutageConfig);
+  ASSERT_FALSE(data.empty());
+  const auto exported = test::run_cli("export-bag " + data + " --out " + (dir / "room.bag").string());
   ASSERT_EQ(exported.exit_code, 0) << exported.output;
 
   // At a quarter of real time: a loaded machine drops no sweep around the outage.
@@ -199,7 +197,7 @@ TEST(RosNode, LiveNodeResetsWhenLidarMappingIsLost) {
   ASSERT_EQ(segments.size(), 2u) << live.node_log;
   EXPECT_TRUE(segments[1]["relocalized"].as<bool>()) << live.node_log;
   const fs::path json = dir / "ape.json";
-  const auto e = test::run_cli("eval --est " + (dir / "live_out/lidar_final.tum").string() + " --gt " + data.string() +
+  const auto e = test::run_cli("eval --est " + (dir / "live_out/lidar_final.tum").string() + " --gt " + data +
                                " --gt-frame lidar --align se3 --json " + json.string());
   ASSERT_EQ(e.exit_code, 0) << e.output;
   // Offline the same lap ends 0.024 m off with the reset and 3.7 m without the check (LidarLossReset).

@@ -18,11 +18,6 @@ struct WindowErrors {
   std::vector<double> rotation_deg;
 };
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
 NavState to_nav_state(const GroundTruthState& gt, bool with_biases) {
   NavState x;
   x.t_ns = gt.t_ns;
@@ -71,8 +66,8 @@ TEST(EurocPreintegration, OneSecondWindowsPredictGroundTruth) {
   const WindowErrors with = evaluate(imu, gt, reader->calibration().imu, true);
   const WindowErrors without = evaluate(imu, gt, reader->calibration().imu, false);
   ASSERT_GT(with.position_m.size(), 300u);
-  const double pos_with = median(with.position_m), rot_with = median(with.rotation_deg);
-  const double pos_without = median(without.position_m), rot_without = median(without.rotation_deg);
+  const double pos_with = test::median(with.position_m), rot_with = test::median(with.rotation_deg);
+  const double pos_without = test::median(without.position_m), rot_without = test::median(without.rotation_deg);
   std::printf("V1_02 1 s windows: %zu\n", with.position_m.size());
   std::printf("  ground-truth biases: median position error %.4f m, rotation error %.4f deg\n", pos_with, rot_with);
   std::printf("  zero biases:         median position error %.4f m, rotation error %.4f deg\n", pos_without,
