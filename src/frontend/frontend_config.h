@@ -37,8 +37,9 @@ struct FrontendConfig {
   // Forward-backward check: a track survives when tracking back lands this close to its start.
   double klt_max_forward_backward_px = 1.0;
   // When > 0, the forward track's finest level is run once more with this (odd, smaller) window, started from
-  // the pyramidal result; 0 keeps klt_window_px at every level.
-  int klt_final_window_px = 0;
+  // the pyramidal result; 0 keeps klt_window_px at every level. 11 with the global graph's bearing_min_step_m
+  // 0.05 (decided together, 2026-12-07; docs/frontend.md, "A small final KLT window").
+  int klt_final_window_px = 11;
   // Anchored tracks (frontend/anchored_patch.h): each KLT position is refined against the patch where the track
   // began, under an affine warp with gain and offset, so the per-frame KLT bias does not add up along the track;
   // a track whose refinement fails is ended. Half size of that patch in pixels; 0 turns it off (the default:

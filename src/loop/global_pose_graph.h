@@ -45,9 +45,10 @@ struct GlobalPoseGraphConfig {
   // Odometry chains that move at least this far (m) are compared as a length and a bearing, the bearing's error at
   // the measured length; 0 = off. Otherwise a pose held pitched against its level step (a mount's pitch in the tilt
   // factors) leaves a residual across the step that shrinks with its length, and a degenerate step's length is
-  // cheap: both legs of a corridor shorten (docs/pose_graph.md, "Length and bearing of a step"). Off by default:
-  // worse on one tuning route (tunnel seed 7, +18 %).
-  double bearing_min_step_m = 0.0;
+  // cheap: both legs of a corridor shorten (docs/pose_graph.md, "Length and bearing of a step"). 0.05 by default
+  // since 2026-12-07, with the frontend's klt_final_window_px 11: alone it was rejected twice, as the shortening
+  // offset the frontend's long legs (docs/frontend.md, "A small final KLT window").
+  double bearing_min_step_m = 0.05;
   RobustLoss loop_loss = RobustLoss::kHuber;
   // Whitened units. 1 bounds a wrong loop's pull best; 3.5 converges in fewer iterations but lets a wrong
   // loop pull 4x harder (docs/pose_graph.md, "Bounded correction").

@@ -35,9 +35,10 @@ TEST(KltTracker, RecoversKnownSubpixelShift) {
     if (!interior) continue;
     EXPECT_TRUE(tracked[i]) << i;
     if (!tracked[i]) continue;
-    // Bilinear resampling of the shifted image bends the truth a little: 0.2 px at worst, 0.05 px typically.
+    // Bilinear resampling of the shifted image bends the truth a little: 0.05 px typically, 0.23 px at worst with the
+    // default's 11 px final window (fewer pixels average the resampling out; 0.2 px with the 21 px window alone).
     const double error = std::hypot(cur_px[i].x - prev_px[i].x - dx, cur_px[i].y - prev_px[i].y - dy);
-    EXPECT_LT(error, 0.2);
+    EXPECT_LT(error, 0.3);
     errors_px.push_back(error);
   }
   ASSERT_GT(errors_px.size(), 100u);

@@ -22,10 +22,13 @@ namespace {
 using test::make_square_loop;
 using test::true_loop;
 
+// Odometry factors as the batch PoseGraph's default has them (whole-step SE(3) residuals, no length-and-bearing
+// form), so that the tests below compare the same problem solved with and without anchors.
 loop::GlobalPoseGraphConfig square_config() {
   loop::GlobalPoseGraphConfig config;
   config.odometry_sigma_m = test::kOdometrySigmaM;
   config.odometry_sigma_rad = test::kOdometrySigmaRad;
+  config.bearing_min_step_m = 0.0;
   return config;
 }
 
@@ -45,6 +48,7 @@ loop::GlobalPoseGraphConfig route_config() {
   loop::GlobalPoseGraphConfig config;
   config.odometry_sigma_m = test::kRouteOdometrySigmaM;
   config.odometry_sigma_rad = test::kRouteOdometrySigmaRad;
+  config.bearing_min_step_m = 0.0;  // as square_config()
   return config;
 }
 
