@@ -7,6 +7,7 @@
 #include "frontend/corner_extractor.h"
 #include "frontend/stereo_matcher.h"
 #include "synthetic_stereo.h"
+#include "test_util.h"
 
 namespace vilslam {
 namespace {
@@ -67,8 +68,7 @@ TEST(StereoMatcher, FindsTheKnownDisparitiesOfASlantedPlane) {
   EXPECT_GT(max_disparity - min_disparity, 5.0);  // the scene really tests varying disparities
   // Sub-pixel corners: typically a tenth of a pixel; a few ambiguous textures may match along the line.
   EXPECT_GE(correct, 0.98 * r.pairs.size()) << "of " << r.pairs.size();
-  std::nth_element(errors_px.begin(), errors_px.begin() + errors_px.size() / 2, errors_px.end());
-  EXPECT_LT(errors_px[errors_px.size() / 2], 0.2);
+  EXPECT_LT(test::median(errors_px), 0.2);
   for (std::size_t k = 1; k < r.pairs.size(); ++k) EXPECT_LT(r.pairs[k - 1].left, r.pairs[k].left);
 }
 

@@ -20,8 +20,7 @@ double median_distance_to_world(const DenseMap& map, const sim::World& world) {
   const std::vector<Eigen::Vector3f> points = map.points();
   std::vector<double> d;
   for (std::size_t i = 0; i < points.size(); i += 7) d.push_back(world.distance_to_surface(points[i].cast<double>()));
-  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
-  return d[d.size() / 2];
+  return test::median(d);
 }
 
 // The drift grows linearly from zero at the first pose to xi at the last: T' = Exp(a xi) T.
