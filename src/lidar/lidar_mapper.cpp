@@ -149,8 +149,9 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
     const SE3 correction = (previous_->T_W_L * T_trans).inverse() * out.T_W_L;  // the jump from the prediction
     out.correction_m = correction.translation().norm();
     out.correction_deg = so3::log(correction.rotation()).norm() * 180.0 / M_PI;
-    out.loss = mapping_loss({out.matched_fraction, out.inlier_fraction, out.gap_s, out.correction_m, out.correction_deg},
-                            config_.loss);
+    out.loss = mapping_loss(
+        {out.matched_fraction, out.inlier_fraction, out.gap_s, out.correction_m, out.correction_deg, has_prior},
+        config_.loss);
   }
   out.vio_prior = has_prior;
   if (out.loss != MappingLoss::kNone) {

@@ -10,7 +10,9 @@ MappingLoss mapping_loss(const SweepFit& fit, const MappingLossConfig& c) {
   if (!c.enabled) return MappingLoss::kNone;
   if (fit.matched_fraction > 0.0 && fit.inlier_fraction < c.min_inlier_fraction) return MappingLoss::kMismatched;
   if (fit.gap_s > c.gap_s && fit.matched_fraction < c.min_matched_fraction) return MappingLoss::kUnmatched;
-  if (fit.correction_m > c.max_correction_m || fit.correction_deg > c.max_correction_deg) return MappingLoss::kJump;
+  if (fit.prior_aided && (fit.correction_m > c.max_correction_m || fit.correction_deg > c.max_correction_deg)) {
+    return MappingLoss::kJump;
+  }
   return MappingLoss::kNone;
 }
 

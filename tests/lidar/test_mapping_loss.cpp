@@ -1,6 +1,6 @@
 // When a registered sweep is rejected (lidar/mapping_loss.h): it matched the wrong surfaces, too little of it
-// matched after a gap, or the registration moved the prediction too far; strictly beyond each threshold, and
-// never with the check off. Bad thresholds in a run
+// matched after a gap, or the registration moved a prior-aided prediction too far; strictly beyond each
+// threshold, and never with the check off. Bad thresholds in a run
 // config name the file.
 #include <gtest/gtest.h>
 
@@ -16,21 +16,25 @@ namespace {
 
 TEST(MappingLoss, RejectsBeyondEachThresholdAndNeverWhenOff) {
   const MappingLossConfig c;
-  // matched, inliers, gap, correction m, deg
-  EXPECT_EQ(mapping_loss({0.75, 0.85, 0.0, 0.05, 0.3}, c), MappingLoss::kNone);
-  EXPECT_EQ(mapping_loss({0.25, 0.35, 0.15, 1.0, 10.0}, c), MappingLoss::kNone);  // at the thresholds: kept
-  EXPECT_EQ(mapping_loss({0.75, 0.34, 0.0, 0.0, 0.0}, c), MappingLoss::kMismatched);
+  // matched, inliers, gap, correction m, deg, prior-aided
+  EXPECT_EQ(mapping_loss({0.75, 0.85, 0.0, 0.05, 0.3, true}, c), MappingLoss::kNone);
+  EXPECT_EQ(mapping_loss({0.25, 0.35, 0.15, 1.0, 10.0, true}, c), MappingLoss::kNone);  // at the thresholds: kept
+  EXPECT_EQ(mapping_loss({0.75, 0.34, 0.0, 0.0, 0.0, true}, c), MappingLoss::kMismatched);
   // Little of it matched: new space in view, unless its prediction spans a gap.
-  EXPECT_EQ(mapping_loss({0.01, 0.9, 0.0, 0.0, 0.0}, c), MappingLoss::kNone);
-  EXPECT_EQ(mapping_loss({0.0, 0.0, 0.0, 0.0, 0.0}, c), MappingLoss::kNone);
-  EXPECT_EQ(mapping_loss({0.24, 0.9, 0.16, 0.0, 0.0}, c), MappingLoss::kUnmatched);
-  EXPECT_EQ(mapping_loss({0.0, 0.0, 5.0, 0.0, 0.0}, c), MappingLoss::kUnmatched);
-  EXPECT_EQ(mapping_loss({0.75, 0.85, 0.0, 1.01, 0.0}, c), MappingLoss::kJump);
-  EXPECT_EQ(mapping_loss({0.75, 0.85, 0.0, 0.0, 10.1}, c), MappingLoss::kJump);
-  EXPECT_EQ(mapping_loss({0.75, 0.2, 5.0, 20.0, 90.0}, c), MappingLoss::kMismatched);  // the first reason that applies
+  EXPECT_EQ(mapping_loss({0.01, 0.9, 0.0, 0.0, 0.0, true}, c), MappingLoss::kNone);
+  EXPECT_EQ(mapping_loss({0.0, 0.0, 0.0, 0.0, 0.0, true}, c), MappingLoss::kNone);
+  EXPECT_EQ(mapping_loss({0.24, 0.9, 0.16, 0.0, 0.0, true}, c), MappingLoss::kUnmatched);
+  EXPECT_EQ(mapping_loss({0.0, 0.0, 5.0, 0.0, 0.0, true}, c), MappingLoss::kUnmatched);
+  EXPECT_EQ(mapping_loss({0.75, 0.85, 0.0, 1.01, 0.0, true}, c), MappingLoss::kJump);
+  EXPECT_EQ(mapping_loss({0.75, 0.85, 0.0, 0.0, 10.1, true}, c), MappingLoss::kJump);
+  // A constant-velocity prediction (no prior) may be off by a turn: no jump, the other two tests still apply.
+  EXPECT_EQ(mapping_loss({0.75, 0.85, 0.0, 1.5, 23.0, false}, c), MappingLoss::kNone);
+  EXPECT_EQ(mapping_loss({0.75, 0.34, 0.0, 1.5, 23.0, false}, c), MappingLoss::kMismatched);
+  EXPECT_EQ(mapping_loss({0.24, 0.9, 0.16, 1.5, 23.0, false}, c), MappingLoss::kUnmatched);
+  EXPECT_EQ(mapping_loss({0.75, 0.2, 5.0, 20.0, 90.0, true}, c), MappingLoss::kMismatched);  // the first reason that applies
   MappingLossConfig off;
   off.enabled = false;
-  EXPECT_EQ(mapping_loss({0.0, 0.0, 5.0, 20.0, 90.0}, off), MappingLoss::kNone);
+  EXPECT_EQ(mapping_loss({0.0, 0.0, 5.0, 20.0, 90.0, true}, off), MappingLoss::kNone);
 
   LidarMappingResult sweep;
   sweep.gap_s = 5.0;
