@@ -21,8 +21,8 @@ struct SweepFit {
   double correction_deg = 0.0;
   // The prediction came from a working motion prior (the VIO's poses). Without one (LiDAR-only, a VIO outage) it
   // is a constant-velocity guess, which a turn from rest or a jolt misses by far more than a sweep's registration
-  // error: the corrections of the realistic outdoor route's LiDAR-only run reach 15-23 deg within its first 7 s,
-  // and its registrations are right (docs/lidar.md, "Losing the map"). Only a prior-aided sweep can be a jump.
+  // error: the realistic outdoor route's LiDAR-only run corrects it by up to 15 deg and 1.45 m (75 of 1,380 sweeps
+  // above 10 deg) and still maps the route (docs/lidar.md, "Losing the map"). Only a prior-aided sweep can be a jump.
   bool prior_aided = true;
 };
 
@@ -40,8 +40,8 @@ struct MappingLossConfig {
   int lost_after_rejected = 3;  // consecutive rejected sweeps
 };
 
-// Why a registered sweep is rejected, in this order: mismatched, unmatched, jump (prior-aided sweeps only). kNone when it is kept or the
-// check is off.
+// Why a registered sweep is rejected, in this order: mismatched, unmatched, jump (prior-aided sweeps only). kNone
+// when it is kept or the check is off.
 MappingLoss mapping_loss(const SweepFit& fit, const MappingLossConfig& config);
 
 // Throws InputError naming source for thresholds out of range.

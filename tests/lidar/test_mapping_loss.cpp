@@ -31,7 +31,8 @@ TEST(MappingLoss, RejectsBeyondEachThresholdAndNeverWhenOff) {
   EXPECT_EQ(mapping_loss({0.75, 0.85, 0.0, 1.5, 23.0, false}, c), MappingLoss::kNone);
   EXPECT_EQ(mapping_loss({0.75, 0.34, 0.0, 1.5, 23.0, false}, c), MappingLoss::kMismatched);
   EXPECT_EQ(mapping_loss({0.24, 0.9, 0.16, 1.5, 23.0, false}, c), MappingLoss::kUnmatched);
-  EXPECT_EQ(mapping_loss({0.75, 0.2, 5.0, 20.0, 90.0, true}, c), MappingLoss::kMismatched);  // the first reason that applies
+  // The first reason that applies.
+  EXPECT_EQ(mapping_loss({0.75, 0.2, 5.0, 20.0, 90.0, true}, c), MappingLoss::kMismatched);
   MappingLossConfig off;
   off.enabled = false;
   EXPECT_EQ(mapping_loss({0.0, 0.0, 5.0, 20.0, 90.0, true}, off), MappingLoss::kNone);
