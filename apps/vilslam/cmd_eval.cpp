@@ -1,8 +1,10 @@
 // `vilslam eval --est FILE --gt FILE ...`: APE, RPE, the KITTI segment metric and the final drift of an
 // estimated trajectory against ground truth (docs/evaluation.md).
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -32,6 +34,8 @@ struct Options {
   std::string gt_frame = "imu";
   std::string map_dir;
   std::string map_gt_path;
+  bool tilt = false;
+  std::optional<double> start_s, end_s;  // window of the estimate, seconds after its first pose
 };
 
 Trajectory load(const std::string& path, const std::string& format, const std::string& fallback_format,
@@ -64,6 +68,22 @@ void print(const eval::TrajectoryEvalReport& r, const Options& o) {
   print_stats_row("APE rot [deg]", r.ape.rot);
   print_stats_row("RPE [m]", r.rpe.trans);
   print_stats_row("RPE rot [deg]", r.rpe.rot);
+  if (r.tilt_deg.count > 0) print_stats_row("tilt [deg]", r.tilt_deg);
+}
+
+// The estimate's poses in [start, end) seconds after its first pose (open ends stay open).
+Trajectory in_window(const Trajectory& est, const Options& o) {
+  if (est.empty() || (!o.start_s && !o.end_s)) return est;
+  for (const auto& [name, value] : {std::pair{"--start-s", o.start_s}, std::pair{"--end-s", o.end_s}})
+    if (value && !std::isfinite(*value)) throw std::invalid_argument(std::string(name) + " must be finite");
+  const TimeNs t0 = est.front().t_ns;
+  Trajectory out;
+  for (const TimedPose& p : est) {
+    if (o.start_s && p.t_ns < t0 + s_to_ns(*o.start_s)) continue;
+    if (o.end_s && p.t_ns >= t0 + s_to_ns(*o.end_s)) continue;
+    out.push_back(p);
+  }
+  return out;
 }
 
 Trajectory groundtruth(const Options& o, const std::string& path) {
@@ -114,6 +134,11 @@ vilslam::cli::Command reg("eval", "Trajectory errors (APE, RPE, KITTI, final dri
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   app.add_option("--json", o->json_path, "Also write the results as JSON to this file");
+  app.add_flag("--tilt", o->tilt,
+               "Also the tilt error: the angle between the estimate's and the ground truth's up directions in the "
+               "body, unaligned (both frames z up and gravity-aligned)");
+  app.add_option("--start-s", o->start_s, "Only the estimate's poses at or after this many seconds after its first");
+  app.add_option("--end-s", o->end_s, "Only the estimate's poses before this many seconds after its first");
   auto* map_gt = app.add_option("--map-gt", o->map_gt_path, "The --map's ground truth (file, or dataset folder in --gt-frame)");
   app.add_option("--map", o->map_dir,
                  "A saved map (run --save-map) whose frame the estimate is in (run --load-map): the ground truth is "
@@ -121,13 +146,15 @@ vilslam::cli::Command reg("eval", "Trajectory errors (APE, RPE, KITTI, final dri
       ->needs(map_gt);
   map_gt->needs("--map");
   return [o]() {
-    const Trajectory est = load(o->est_path, o->est_format, o->format, o->est_times.empty() ? o->times : o->est_times);
+    const Trajectory est =
+        in_window(load(o->est_path, o->est_format, o->format, o->est_times.empty() ? o->times : o->est_times), *o);
     const Trajectory gt = o->map_dir.empty() ? groundtruth(*o, o->gt_path) : in_map_frame(groundtruth(*o, o->gt_path), *o);
     eval::TrajectoryEvalConfig config;
     config.align = eval::parse_align_mode(o->align);
     config.align_first_n = o->align_first_n;
     config.rpe = {o->delta, o->delta_unit == "m" ? eval::DeltaUnit::kMeters : eval::DeltaUnit::kFrames};
     config.max_diff_ns = s_to_ns(o->max_diff_s);
+    config.tilt = o->tilt;
     eval::TrajectoryEvalReport report;
     try {
       report = eval::evaluate_trajectory(est, gt, config);

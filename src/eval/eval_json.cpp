@@ -52,6 +52,7 @@ std::string trajectory_report_json(const TrajectoryEvalReport& r, const Trajecto
   }
   json.key("segments").value(static_cast<std::uint64_t>(r.kitti.segments));
   json.end_object();
+  if (r.tilt_deg.count > 0) write_stats(json, "tilt_deg", r.tilt_deg);
   json.key("fde_percent").value(r.fde.percent);
   json.key("fde_start_aligned_percent").value(r.fde_start_aligned.percent);
   json.key("path_length_m").value(r.path_length_m);

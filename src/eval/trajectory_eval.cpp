@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "eval/tilt_error.h"
+
 namespace vilslam::eval {
 
 TrajectoryEvalReport evaluate_trajectory(const Trajectory& est, const Trajectory& gt, const TrajectoryEvalConfig& config) {
@@ -23,6 +25,7 @@ TrajectoryEvalReport evaluate_trajectory(const Trajectory& est, const Trajectory
   r.fde = final_drift(est);
   r.fde_start_aligned = final_drift_start_aligned(gt_matched, est_matched);
   r.path_length_m = r.fde.path_length_m;
+  if (config.tilt) r.tilt_deg = compute_stats(tilt_errors_deg(gt_matched, est_matched));
   return r;
 }
 

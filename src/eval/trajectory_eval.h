@@ -1,6 +1,6 @@
 #pragma once
 // The whole trajectory evaluation behind `vilslam eval`: associate, align, then APE, RPE, the KITTI
-// segment metric and the final drift.
+// segment metric, the final drift and, on request, the tilt error.
 #include <cstddef>
 
 #include "common/types.h"
@@ -9,6 +9,7 @@
 #include "eval/association.h"
 #include "eval/drift.h"
 #include "eval/kitti_metric.h"
+#include "eval/stats.h"
 
 namespace vilslam::eval {
 
@@ -17,6 +18,7 @@ struct TrajectoryEvalConfig {
   std::size_t align_first_n = 0;  // 0 = align on all matched poses
   RpeConfig rpe;
   TimeNs max_diff_ns = kDefaultMaxDiffNs;
+  bool tilt = false;  // also the tilt error (eval/tilt_error.h): for gravity-aligned, z-up frames only
 };
 
 struct TrajectoryEvalReport {
@@ -28,6 +30,7 @@ struct TrajectoryEvalReport {
   FinalDrift fde;               // of the whole estimate (first vs last pose)
   FinalDrift fde_start_aligned; // matched poses, start poses aligned with the ground truth
   double path_length_m = 0;     // of the whole estimate
+  ErrorStats tilt_deg;          // with config.tilt: of the matched poses, unaligned (count 0 otherwise)
 };
 
 // Throws std::invalid_argument when fewer than 2 poses match or a metric cannot be formed.
