@@ -1,6 +1,5 @@
 #include "eval/tilt_error.h"
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
