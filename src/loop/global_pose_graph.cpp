@@ -142,7 +142,16 @@ std::vector<std::size_t> GlobalPoseGraph::select_anchors(std::size_t start, std:
   return anchors;
 }
 
-CorrectionSummary GlobalPoseGraph::optimize() {
+CorrectionSummary GlobalPoseGraph::optimize() { return solve(config_.tilt_sigma_rad > 0.0 && !config_.tilt_final_only); }
+
+CorrectionSummary GlobalPoseGraph::optimize_final() {
+  if (!config_.tilt_final_only || config_.tilt_sigma_rad <= 0.0 || (loops_.empty() && map_loops_.empty())) return {};
+  first_new_loop_pose_ = map_loops_.empty() ? poses_.size() - 1 : 0;
+  for (const RelativePoseConstraint& c : loops_) first_new_loop_pose_ = std::min(first_new_loop_pose_, lower_end(c));
+  return solve(true);
+}
+
+CorrectionSummary GlobalPoseGraph::solve(bool with_tilt) {
   CorrectionSummary summary;
   if (first_new_loop_pose_ == kNone) return summary;
   const auto t0 = std::chrono::steady_clock::now();
@@ -170,7 +179,7 @@ CorrectionSummary GlobalPoseGraph::optimize() {
     const RelativePoseConstraint& c = map_loops_[m].loop;
     reduced.add_constraint({m, slot(c.to_index), c.T_from_to, c.information, ConstraintKind::kLoop});
   }
-  if (config_.tilt_sigma_rad > 0.0) {
+  if (with_tilt) {
     const Mat3 R_offset = config_.tilt_offset ? so3::exp(up_offset_.mount()) : Mat3::Identity();
     for (std::size_t k = map_loops_.empty() ? 1 : 0; k < anchors.size(); ++k) {  // a fixed first pose needs none
       if (const auto& up = up_L_[anchors[k]]) reduced.add_tilt({first + k, R_offset * up->up_L, up->sigma_rad});
@@ -196,7 +205,7 @@ CorrectionSummary GlobalPoseGraph::optimize() {
   summary.converged = solved.converged;
   summary.initial_cost = solved.initial_cost;
   summary.final_cost = solved.final_cost;
-  if (config_.tilt_sigma_rad > 0.0 && config_.mount_tilt_sigma_rad > 0.0) summary.up_rotation_L = reduced.up_rotation();
+  if (with_tilt && config_.mount_tilt_sigma_rad > 0.0) summary.up_rotation_L = reduced.up_rotation();
   summary.solve_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return summary;
 }

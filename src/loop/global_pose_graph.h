@@ -36,6 +36,10 @@ struct GlobalPoseGraphConfig {
   // apart, and without turns the whole goes to the map's tilt, as before. Off by default: worse on the tuning
   // seeds (docs/pose_graph.md).
   bool tilt_offset = false;
+  // The tilt factors only in the final solve (optimize_final, lidar_final.tum), not in the corrections fed back to
+  // LiDAR mapping: a correction that levels the route also tilts the old map under a revisit, whose published poses
+  // then lie off the first visit's as published (docs/pose_graph.md, "Levelling only at the end").
+  bool tilt_final_only = false;
   // Prior sigma (rad) of a rotation eps_L estimated in every correction with the poses and applied to every tilt
   // factor's up direction (PoseGraph::estimate_up_rotation); 0 = none. A mount pitched against its calibration
   // pitches every pose the tilt factors hold, and the odometry's forward motion then descends along the whole
@@ -106,6 +110,9 @@ class GlobalPoseGraph {
 
   // Corrects every pose with the factors known now (nothing to do without a new loop). Deterministic.
   CorrectionSummary optimize();
+  // With config.tilt_final_only and at least one loop: the window of every loop solved again, with the tilt factors
+  // (the final trajectory); nothing to do otherwise.
+  CorrectionSummary optimize_final();
 
   std::size_t size() const { return poses_.size(); }
   const SE3& pose(std::size_t index) const { return poses_.at(index).T_W_B; }  // current best estimate T_W_L
@@ -115,6 +122,7 @@ class GlobalPoseGraph {
   static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
 
   std::size_t window_start() const;
+  CorrectionSummary solve(bool with_tilt);
   std::vector<std::size_t> select_anchors(std::size_t start, std::size_t& spacing) const;
 
   GlobalPoseGraphConfig config_;

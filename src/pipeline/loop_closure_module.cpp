@@ -250,6 +250,7 @@ LoopClosureOutput LoopClosureModule::finish() {
   out_.key_frames = closer_ ? closer_->key_frames().size() : 0;
   out_.map_loops = graph_.map_loops();
   if (closer_) out_.key_frame_data = closer_->release_key_frames();
+  if (corrected_) note_correction(graph_.optimize_final());
   out_.lidar_final = graph_.size() > 0 ? graph_.trajectory() : Trajectory{};
   if (!corrected_) out_.lidar_final = out_.lidar_global;  // no loop: the odometry is final
   return std::move(out_);

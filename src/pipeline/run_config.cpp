@@ -11,7 +11,8 @@ namespace {
 YamlFields graph_yaml_fields(loop::GlobalPoseGraphConfig& c) {
   return {yaml_value("odometry_sigma_m", c.odometry_sigma_m), yaml_value("odometry_sigma_rad", c.odometry_sigma_rad),
           yaml_value("degenerate_sigma", c.degenerate_sigma), yaml_value("tilt_sigma_rad", c.tilt_sigma_rad),
-          yaml_value("tilt_offset", c.tilt_offset), yaml_value("mount_tilt_sigma_rad", c.mount_tilt_sigma_rad),
+          yaml_value("tilt_offset", c.tilt_offset), yaml_value("tilt_final_only", c.tilt_final_only),
+          yaml_value("mount_tilt_sigma_rad", c.mount_tilt_sigma_rad),
           yaml_value("bearing_min_step_m", c.bearing_min_step_m),
           yaml_value("loop_loss_scale", c.loop_loss_scale), yaml_value("max_iterations", c.max_iterations),
           yaml_value("anchor_spacing", c.anchor_spacing), yaml_value("max_anchors", c.max_anchors)};

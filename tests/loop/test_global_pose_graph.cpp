@@ -329,6 +329,30 @@ TEST(GlobalPoseGraph, DegenerateStepsTakeTheCorrectionAlongTheirDirection) {
 // poses stay more than half a degree off. With the VIO's up direction measured at every pose (level here) every
 // pose comes back to within a quarter of the wobble (the odometry's own stiffness keeps the rest: 0.18 degrees).
 // Up directions whose own sigma is 3 degrees (a VIO that has just started again) hold nothing.
+// A straight 20 m route whose odometry pitches 1 deg in steps 3-12 (a registration's wobble), every pose's measured
+// up direction level (sigma measured_sigma_rad), and a loop from pose 2 to the end that says the route is level.
+loop::GlobalPoseGraph wobble_route_graph(const loop::GlobalPoseGraphConfig& config, double wobble_rad, double measured_sigma_rad) {
+  loop::GlobalPoseGraph graph(config);
+  graph.add_first_pose(0, SE3());
+  for (int i = 1; i <= 40; ++i) {
+    const bool wobbling = i >= 3 && i <= 12;
+    const Quat step_rotation = wobbling ? Quat(Eigen::AngleAxisd(wobble_rad / 10.0, Vec3::UnitY())) : Quat::Identity();
+    graph.add_odometry(i * 100'000'000LL, SE3(step_rotation, Vec3(0.5, 0, 0)));
+  }
+  for (std::size_t i = 0; i < graph.size(); ++i) graph.set_up_direction(i, Vec3::UnitZ(), measured_sigma_rad);
+  graph.add_loop(2, 40, SE3(Quat::Identity(), Vec3(19.0, 0, 0)), loop::information_from_sigmas(0.01, 0.001));
+  return graph;
+}
+
+double graph_max_tilt_rad(const loop::GlobalPoseGraph& graph) {
+  double max_rad = 0.0;
+  for (std::size_t i = 0; i < graph.size(); ++i) {
+    const Vec3 up_L = graph.pose(i).rotation().transpose() * Vec3::UnitZ();
+    max_rad = std::max(max_rad, std::acos(std::clamp(up_L.z(), -1.0, 1.0)));
+  }
+  return max_rad;
+}
+
 TEST(GlobalPoseGraph, TiltFactorsKeepTheRouteLevelThroughALoop) {
   const double wobble_rad = 1.0 * M_PI / 180.0;
   for (const auto& [tilt_sigma_rad, measured_sigma_rad] :
@@ -336,30 +360,41 @@ TEST(GlobalPoseGraph, TiltFactorsKeepTheRouteLevelThroughALoop) {
     loop::GlobalPoseGraphConfig config;
     config.anchor_spacing = 4;
     config.tilt_sigma_rad = tilt_sigma_rad;
-    loop::GlobalPoseGraph graph(config);
-    graph.add_first_pose(0, SE3());
-    for (int i = 1; i <= 40; ++i) {
-      const bool wobbling = i >= 3 && i <= 12;
-      const Quat step_rotation = wobbling ? Quat(Eigen::AngleAxisd(wobble_rad / 10.0, Vec3::UnitY())) : Quat::Identity();
-      graph.add_odometry(i * 100'000'000LL, SE3(step_rotation, Vec3(0.5, 0, 0)));
-    }
-    for (std::size_t i = 0; i < graph.size(); ++i) graph.set_up_direction(i, Vec3::UnitZ(), measured_sigma_rad);
-    graph.add_loop(2, 40, SE3(Quat::Identity(), Vec3(19.0, 0, 0)), loop::information_from_sigmas(0.01, 0.001));
+    loop::GlobalPoseGraph graph = wobble_route_graph(config, wobble_rad, measured_sigma_rad);
     graph.optimize();
-    double max_tilt_rad = 0.0;
-    for (std::size_t i = 0; i < graph.size(); ++i) {
-      const Vec3 up_L = graph.pose(i).rotation().transpose() * Vec3::UnitZ();
-      max_tilt_rad = std::max(max_tilt_rad, std::acos(std::clamp(up_L.z(), -1.0, 1.0)));
-    }
+    const double tilt_rad = graph_max_tilt_rad(graph);
     std::printf("tilt sigma %.3f rad, measured %.3f rad: max tilt %.3f deg, end height %.4f m\n", tilt_sigma_rad,
-                measured_sigma_rad, max_tilt_rad * 180.0 / M_PI, graph.pose(40).translation().z());
+                measured_sigma_rad, tilt_rad * 180.0 / M_PI, graph.pose(40).translation().z());
     if (tilt_sigma_rad > 0.0 && measured_sigma_rad == 0.0) {
-      EXPECT_LT(max_tilt_rad, 0.25 * wobble_rad);
+      EXPECT_LT(tilt_rad, 0.25 * wobble_rad);
       EXPECT_NEAR(graph.pose(40).translation().z(), 0.0, 0.01);
     } else {
-      EXPECT_GT(max_tilt_rad, 0.5 * wobble_rad);
+      EXPECT_GT(tilt_rad, 0.5 * wobble_rad);
     }
   }
+}
+
+// tilt_final_only: the correction fed back to the mapper keeps the odometry's tilt (as without tilt factors), and
+// the final solve levels the route as the default correction does; without the option the final solve changes nothing.
+TEST(GlobalPoseGraph, WithTiltFinalOnlyTheCorrectionKeepsTheTiltAndTheFinalSolveLevels) {
+  const double wobble_rad = 1.0 * M_PI / 180.0;
+  loop::GlobalPoseGraphConfig config;
+  config.anchor_spacing = 4;
+  config.tilt_sigma_rad = 0.002;
+  loop::GlobalPoseGraph levelled = wobble_route_graph(config, wobble_rad, 0.0);
+  levelled.optimize();
+  const Trajectory corrected = levelled.trajectory();
+  EXPECT_EQ(levelled.optimize_final().variables, 0u);
+  EXPECT_EQ(max_diff(levelled.trajectory(), corrected).max_m, 0.0);
+
+  config.tilt_final_only = true;
+  loop::GlobalPoseGraph final_only = wobble_route_graph(config, wobble_rad, 0.0);
+  final_only.optimize();
+  EXPECT_GT(graph_max_tilt_rad(final_only), 0.5 * wobble_rad);
+  EXPECT_GT(final_only.optimize_final().variables, 0u);
+  EXPECT_LT(graph_max_tilt_rad(final_only), 0.25 * wobble_rad);
+  EXPECT_NEAR(final_only.pose(40).translation().z(), 0.0, 0.01);
+  EXPECT_LT(max_diff(final_only.trajectory(), corrected).max_m, 0.01);
 }
 
 // An out-and-back route (a tunnel's), level, whose odometry pitches 0.4 deg in its last 5 m (a registration's
