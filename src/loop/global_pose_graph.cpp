@@ -142,7 +142,9 @@ std::vector<std::size_t> GlobalPoseGraph::select_anchors(std::size_t start, std:
   return anchors;
 }
 
-CorrectionSummary GlobalPoseGraph::optimize() { return solve(config_.tilt_sigma_rad > 0.0 && !config_.tilt_final_only); }
+CorrectionSummary GlobalPoseGraph::optimize() {
+  return solve(config_.tilt_sigma_rad > 0.0 && !config_.tilt_final_only);
+}
 
 CorrectionSummary GlobalPoseGraph::optimize_final() {
   if (!config_.tilt_final_only || config_.tilt_sigma_rad <= 0.0 || (loops_.empty() && map_loops_.empty())) return {};

@@ -323,15 +323,10 @@ TEST(GlobalPoseGraph, DegenerateStepsTakeTheCorrectionAlongTheirDirection) {
   }
 }
 
-// A level straight route of 40 steps of 0.5 m whose odometry pitched by 1 degree over steps 3-12 (the outdoor
-// mapper's start wobble, docs/odometry.md) and stayed pitched. A loop from pose 2, before the error, measures the
-// true motion to pose 40. Without tilt factors the graph spreads the 1 degree over the whole route, so mid-route
-// poses stay more than half a degree off. With the VIO's up direction measured at every pose (level here) every
-// pose comes back to within a quarter of the wobble (the odometry's own stiffness keeps the rest: 0.18 degrees).
-// Up directions whose own sigma is 3 degrees (a VIO that has just started again) hold nothing.
 // A straight 20 m route whose odometry pitches 1 deg in steps 3-12 (a registration's wobble), every pose's measured
 // up direction level (sigma measured_sigma_rad), and a loop from pose 2 to the end that says the route is level.
-loop::GlobalPoseGraph wobble_route_graph(const loop::GlobalPoseGraphConfig& config, double wobble_rad, double measured_sigma_rad) {
+loop::GlobalPoseGraph wobble_route_graph(const loop::GlobalPoseGraphConfig& config, double wobble_rad,
+                                         double measured_sigma_rad) {
   loop::GlobalPoseGraph graph(config);
   graph.add_first_pose(0, SE3());
   for (int i = 1; i <= 40; ++i) {
@@ -353,6 +348,12 @@ double graph_max_tilt_rad(const loop::GlobalPoseGraph& graph) {
   return max_rad;
 }
 
+// A level straight route of 40 steps of 0.5 m whose odometry pitched by 1 degree over steps 3-12 (the outdoor
+// mapper's start wobble, docs/odometry.md) and stayed pitched. A loop from pose 2, before the error, measures the
+// true motion to pose 40. Without tilt factors the graph spreads the 1 degree over the whole route, so mid-route
+// poses stay more than half a degree off. With the VIO's up direction measured at every pose (level here) every
+// pose comes back to within a quarter of the wobble (the odometry's own stiffness keeps the rest: 0.18 degrees).
+// Up directions whose own sigma is 3 degrees (a VIO that has just started again) hold nothing.
 TEST(GlobalPoseGraph, TiltFactorsKeepTheRouteLevelThroughALoop) {
   const double wobble_rad = 1.0 * M_PI / 180.0;
   for (const auto& [tilt_sigma_rad, measured_sigma_rad] :
@@ -375,7 +376,8 @@ TEST(GlobalPoseGraph, TiltFactorsKeepTheRouteLevelThroughALoop) {
 }
 
 // tilt_final_only: the correction fed back to the mapper keeps the odometry's tilt (as without tilt factors), and
-// the final solve levels the route as the default correction does; without the option the final solve changes nothing.
+// the final solve levels the route as the default correction does; without the option the final solve changes
+// nothing.
 TEST(GlobalPoseGraph, WithTiltFinalOnlyTheCorrectionKeepsTheTiltAndTheFinalSolveLevels) {
   const double wobble_rad = 1.0 * M_PI / 180.0;
   loop::GlobalPoseGraphConfig config;

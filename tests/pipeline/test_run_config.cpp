@@ -47,7 +47,8 @@ TEST(RunConfig, SectionsReachTheirModulesAndMissingOnesKeepDefaults) {
   const OfflineRunConfig c = load_run_config(write_file(
       "frontend:\n  max_corners: 300\n  cross_check: false\nvio:\n  smoother:\n    window_size: 6\n"
       "lidar_mapper:\n  features:\n    half_window: 4\n  registration:\n    loss: huber\n  mapper:\n    dewarp: false\n"
-      "loop_closure:\n  graph:\n    mount_tilt_sigma_rad: 0.02\n    bearing_min_step_m: 0.05\n    tilt_final_only: true\n"));
+      "loop_closure:\n  graph:\n    mount_tilt_sigma_rad: 0.02\n    bearing_min_step_m: 0.05\n"
+      "    tilt_final_only: true\n"));
   EXPECT_EQ(c.frontend.max_corners, 300);
   EXPECT_FALSE(c.frontend.cross_check);
   EXPECT_EQ(c.vio.smoother.window_size, 6);
