@@ -38,8 +38,9 @@ struct GlobalPoseGraphConfig {
   bool tilt_offset = false;
   // The tilt factors only in the final solve (optimize_final, lidar_final.tum), not in the corrections fed back to
   // LiDAR mapping: a correction that levels the route also tilts the old map under a revisit, whose published poses
-  // then lie off the first visit's as published (docs/pose_graph.md, "Levelling only at the end").
-  bool tilt_final_only = false;
+  // then lie off the first visit's as published (issue 9 item 4). On by default since 2026-12-07 for that, at about
+  // 1 % of final ATE on the tuning routes (docs/pose_graph.md, "Levelling only at the end").
+  bool tilt_final_only = true;
   // Prior sigma (rad) of a rotation eps_L estimated in every correction with the poses and applied to every tilt
   // factor's up direction (PoseGraph::estimate_up_rotation); 0 = none. A mount pitched against its calibration
   // pitches every pose the tilt factors hold, and the odometry's forward motion then descends along the whole

@@ -361,6 +361,7 @@ TEST(GlobalPoseGraph, TiltFactorsKeepTheRouteLevelThroughALoop) {
     loop::GlobalPoseGraphConfig config;
     config.anchor_spacing = 4;
     config.tilt_sigma_rad = tilt_sigma_rad;
+    config.tilt_final_only = false;  // the tilt factors in the correction itself
     loop::GlobalPoseGraph graph = wobble_route_graph(config, wobble_rad, measured_sigma_rad);
     graph.optimize();
     const double tilt_rad = graph_max_tilt_rad(graph);
@@ -375,14 +376,15 @@ TEST(GlobalPoseGraph, TiltFactorsKeepTheRouteLevelThroughALoop) {
   }
 }
 
-// tilt_final_only: the correction fed back to the mapper keeps the odometry's tilt (as without tilt factors), and
-// the final solve levels the route as the default correction does; without the option the final solve changes
-// nothing.
+// tilt_final_only (the default): the correction fed back to the mapper keeps the odometry's tilt (as without tilt
+// factors), and the final solve levels the route as a correction with the tilt factors does; without the option the
+// final solve changes nothing.
 TEST(GlobalPoseGraph, WithTiltFinalOnlyTheCorrectionKeepsTheTiltAndTheFinalSolveLevels) {
   const double wobble_rad = 1.0 * M_PI / 180.0;
   loop::GlobalPoseGraphConfig config;
   config.anchor_spacing = 4;
   config.tilt_sigma_rad = 0.002;
+  config.tilt_final_only = false;
   loop::GlobalPoseGraph levelled = wobble_route_graph(config, wobble_rad, 0.0);
   levelled.optimize();
   const Trajectory corrected = levelled.trajectory();
@@ -416,6 +418,7 @@ TEST(GlobalPoseGraph, TheMountsTiltDoesNotBendAnOutAndBackRoute) {
     loop::GlobalPoseGraphConfig config;
     config.tilt_offset = mount == Mount::kTiltOffset;
     config.mount_tilt_sigma_rad = mount == Mount::kInCorrection ? 0.0175 : 0.0;
+    config.tilt_final_only = false;  // the tilt factors in the correction itself
     loop::GlobalPoseGraph graph(config);
     graph.add_first_pose(0, SE3());
     for (int i = 1; i <= 2 * leg + 1; ++i) {
@@ -476,6 +479,7 @@ TEST(GlobalPoseGraph, APitchAgainstTheOdometryShortensDegenerateLegsUnlessTheMou
     config.degenerate_sigma = c.degenerate_sigma;
     config.mount_tilt_sigma_rad = c.mount_tilt_sigma_rad;
     config.bearing_min_step_m = c.bearing_min_step_m;
+    config.tilt_final_only = false;  // the tilt factors in the correction itself
     loop::GlobalPoseGraph graph(config);
     graph.add_first_pose(0, SE3());
     graph.set_up_direction(0, mount_error.transpose() * Vec3::UnitZ());

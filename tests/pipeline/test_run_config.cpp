@@ -48,7 +48,7 @@ TEST(RunConfig, SectionsReachTheirModulesAndMissingOnesKeepDefaults) {
       "frontend:\n  max_corners: 300\n  cross_check: false\nvio:\n  smoother:\n    window_size: 6\n"
       "lidar_mapper:\n  features:\n    half_window: 4\n  registration:\n    loss: huber\n  mapper:\n    dewarp: false\n"
       "loop_closure:\n  graph:\n    mount_tilt_sigma_rad: 0.02\n    bearing_min_step_m: 0.05\n"
-      "    tilt_final_only: true\n"));
+      "    tilt_final_only: false\n"));
   EXPECT_EQ(c.frontend.max_corners, 300);
   EXPECT_FALSE(c.frontend.cross_check);
   EXPECT_EQ(c.vio.smoother.window_size, 6);
@@ -57,7 +57,7 @@ TEST(RunConfig, SectionsReachTheirModulesAndMissingOnesKeepDefaults) {
   EXPECT_FALSE(c.lidar.dewarp);
   EXPECT_EQ(c.graph.mount_tilt_sigma_rad, 0.02);
   EXPECT_EQ(c.graph.bearing_min_step_m, 0.05);
-  EXPECT_TRUE(c.graph.tilt_final_only);
+  EXPECT_FALSE(c.graph.tilt_final_only);
   // Keys left out keep the mapper's defaults (not those of a bare LidarConfig).
   EXPECT_TRUE(c.lidar.lidar.registration.remap_degenerate_directions);
   EXPECT_EQ(c.lidar.lidar.registration.degenerate_min_eigenvalue_per_match,
@@ -72,7 +72,7 @@ TEST(RunConfig, SectionsReachTheirModulesAndMissingOnesKeepDefaults) {
   expected.lidar.dewarp = false;
   expected.graph.mount_tilt_sigma_rad = 0.02;
   expected.graph.bearing_min_step_m = 0.05;
-  expected.graph.tilt_final_only = true;
+  expected.graph.tilt_final_only = false;
   EXPECT_EQ(run_config_yaml(c), run_config_yaml(expected));
   // The written config reads back to the same config.
   EXPECT_EQ(run_config_yaml(load_run_config(write_file(run_config_yaml(c)))), run_config_yaml(c));
