@@ -250,7 +250,11 @@ LoopClosureOutput LoopClosureModule::finish() {
   out_.key_frames = closer_ ? closer_->key_frames().size() : 0;
   out_.map_loops = graph_.map_loops();
   if (closer_) out_.key_frame_data = closer_->release_key_frames();
-  if (corrected_) note_correction(graph_.optimize_final());
+  if (corrected_) {
+    const loop::CorrectionSummary final_solve = graph_.optimize_final();
+    note_correction(final_solve);
+    if (final_solve.variables > 0) out_.final_solve_ms.push_back(final_solve.solve_ms);
+  }
   out_.lidar_final = graph_.size() > 0 ? graph_.trajectory() : Trajectory{};
   if (!corrected_) out_.lidar_final = out_.lidar_global;  // no loop: the odometry is final
   return std::move(out_);

@@ -33,6 +33,7 @@ struct LoopClosureOutput {
   std::vector<double> key_frame_ms;   // key image extraction per key frame
   std::vector<double> detection_ms;   // detection + constraints (LoopCloser::add_and_detect) per key frame
   std::vector<double> correction_ms;  // graph optimization + map rebuild per accepted loop
+  std::vector<double> final_solve_ms;  // the final solve (GlobalPoseGraph::optimize_final) of a run with loops
   // With a loaded map (load_map): when this run joined the map's frame (re-localization; none: it never did,
   // and every output is in the run's own frame), where the run's frame lay in the map then, and the loops
   // to the map's key frames in the graph.

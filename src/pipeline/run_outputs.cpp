@@ -35,6 +35,7 @@ std::vector<TimingSeries> timing_series(const OfflineRunResult& r) {
     series.push_back({"key_frame", "loop", r.loop->key_frame_ms});
     series.push_back({"loop_detection_and_constraints", "loop", r.loop->detection_ms});
     series.push_back({"loop_correction", "loop", r.loop->correction_ms});
+    series.push_back({"loop_final_solve", "loop", r.loop->final_solve_ms});
   }
   if (r.realtime) {
     series.push_back({"imu_pose_latency", "latency", r.realtime->imu_pose_latency_ms});

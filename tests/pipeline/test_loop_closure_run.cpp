@@ -14,6 +14,7 @@
 #include "io/trajectory_io.h"
 #include "loop/loop_constraints_io.h"
 #include "pipeline/time_offset_pass.h"
+#include "report/run_dir.h"
 #include "sim/calibration_errors.h"
 #include "delayed_camera_reader.h"
 #include "shared_simulation.h"
@@ -65,6 +66,13 @@ class LoopClosureRun : public ::testing::Test {
   }
   static Trajectory read(const std::string& run, const std::string& file) {
     return read_trajectory((*runs_ / run / file).string(), TrajectoryFormat::kTum);
+  }
+  // The events of one timings.json series; -1 when the run has no such series.
+  static double timed_events(const std::string& run, const std::string& series) {
+    for (const report::TimingSummaryRow& row : report::read_run_dir((*runs_ / run).string()).timings.summaries) {
+      if (row.series == series) return row.frames;
+    }
+    return -1.0;
   }
   static fs::path* data_;
   static fs::path* runs_;
@@ -133,6 +141,9 @@ TEST_F(LoopClosureRun, OutputsAgree) {
     ++accepted;
   EXPECT_EQ(accepted, loop::read_loop_rows((*runs_ / "a" / "loops.csv").string()).size());
   EXPECT_NE(test::read_file_bytes(*runs_ / "a" / "timings.json").find("\"loops_accepted\""), std::string::npos);
+  // The final solve with the tilt factors (tilt_final_only, the default) is timed once, after the loops.
+  EXPECT_EQ(timed_events("a", "loop_final_solve"), 1.0);
+  EXPECT_EQ(timed_events("a", "loop_correction"), static_cast<double>(accepted));
 }
 
 // Two threaded runs, and a run with every module on one thread: the same bytes.
@@ -166,6 +177,7 @@ TEST_F(LoopClosureRun, DisabledGivesTheOdometryOnly) {
   EXPECT_EQ(test::read_file_bytes(*runs_ / "off" / "lidar_final.tum"), test::read_file_bytes(*runs_ / "off" / "lidar.tum"));
   EXPECT_EQ(test::read_file_bytes(*runs_ / "off" / "lidar_global.tum"),
             test::read_file_bytes(*runs_ / "off" / "lidar.tum"));
+  EXPECT_EQ(timed_events("off", "loop_final_solve"), 0.0);
   // Up to the first loop the enabled run maps exactly like the disabled one.
   EXPECT_EQ(read("off", "lidar.tum").front().T_W_B.translation(), read("a", "lidar.tum").front().T_W_B.translation());
 }

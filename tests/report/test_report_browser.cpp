@@ -72,8 +72,8 @@ TEST(ReportBrowser, RunReportRendersEveryPlotAndTheMap) {
   const fs::path screenshot = dir / "report.png";
   const std::string status = expect_rendered(test::open_in_chromium(chromium, html, dir / "browser", kWindow, screenshot));
   // 2 path views, 2 error plots (VIO and LiDAR against the ground truth), one histogram per timing series
-  // (frontend, smoother, LiDAR mapping, key frame, loop detection, loop correction), and the map.
-  EXPECT_NE(status.find("ok: 10 plots, map of "), std::string::npos) << status;
+  // (frontend, smoother, LiDAR mapping, key frame, loop detection, loop correction, the final solve), and the map.
+  EXPECT_NE(status.find("ok: 11 plots, map of "), std::string::npos) << status;
   expect_png(screenshot);
 }
 
