@@ -95,6 +95,7 @@ void print_summary(const OfflineRunResult& r, TimeNs start_t_ns) {
               r.loop->candidates.size(), accepted);
   std::printf("loop detection + constraints ms: median %.2f p95 %.2f max %.2f; correction ms: median %.2f max %.2f\n",
               de.median_ms, de.p95_ms, de.max_ms, co.median_ms, co.max_ms);
+  for (const double ms : r.loop->final_solve_ms) std::printf("final solve with the tilt factors ms: %.2f\n", ms);
   if (r.loop->mount_tilt_L) {
     const Vec3 deg = *r.loop->mount_tilt_L * (180.0 / M_PI);
     // About L's x and y axes: a rotation about (nearly) the up direction itself does not turn it.

@@ -143,6 +143,7 @@ TEST_F(LoopClosureRun, OutputsAgree) {
   EXPECT_NE(test::read_file_bytes(*runs_ / "a" / "timings.json").find("\"loops_accepted\""), std::string::npos);
   // The final solve with the tilt factors (tilt_final_only, the default) is timed once, after the loops.
   EXPECT_EQ(timed_events("a", "loop_final_solve"), 1.0);
+  EXPECT_NE(output_a_->find("final solve with the tilt factors ms: "), std::string::npos) << *output_a_;
   EXPECT_EQ(timed_events("a", "loop_correction"), static_cast<double>(accepted));
 }
 
