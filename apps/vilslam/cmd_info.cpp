@@ -7,6 +7,7 @@
 #include "common/json_writer.h"
 #include "io/calibration_io.h"
 #include "io/dataset_index.h"
+#include "lidar/sensor_traits.h"
 #include "vilslam/command.h"
 #include "vilslam/dataset_options.h"
 
@@ -96,6 +97,7 @@ vilslam::cli::Command reg("info", "Describe and validate a dataset (EuRoC ASL, v
     const std::vector<std::string> names = sensors(index);
     const double duration_s = ns_to_s(index.summary.end_t_ns - index.summary.start_t_ns);
     print(index, names, duration_s);
+    if (!index.scans.empty()) std::printf("%s", lidar::sensor_traits_text(lidar::first_sweep_traits(index)).c_str());
     if (!opts->json_path.empty()) write_json(opts->json_path, index, names, duration_s);
     return 0;
   };

@@ -58,9 +58,16 @@ void assign_azimuth_times(LidarScan& scan, double sweep_period_s) {
   }
 }
 
-bool fill_missing_point_times(LidarScan& scan, const LidarIntrinsics& lidar) {
-  if (lidar.num_rings <= 0 || has_point_times(scan)) return false;
-  assign_azimuth_times(scan, 1.0 / lidar.rate_hz);
+void AzimuthClockVote::vote(double rms_timed_m, double rms_instant_m) {
+  if (state_ != State::kUndecided) return;
+  ++votes_;
+  timed_better_ += rms_timed_m < rms_instant_m;
+  if (votes_ == kVotes) state_ = 2 * timed_better_ > kVotes ? State::kTimed : State::kInstant;
+}
+
+bool fill_missing_point_times(LidarScan& scan, const SensorTraits& traits, double rate_hz) {
+  if (!traits.spinning() || has_point_times(scan)) return false;
+  assign_azimuth_times(scan, 1.0 / rate_hz);
   return true;
 }
 

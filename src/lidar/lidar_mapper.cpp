@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "common/error.h"
+#include "common/log.h"
 #include "lidar/dewarp.h"
 #include "lidar/registration.h"
 
@@ -18,6 +19,13 @@ PoseAtTime constant_velocity(const Vec6& motion, TimeNs duration_ns, TimeNs end_
   return [motion, duration_ns, end_t_ns](TimeNs t_ns) {
     return SE3::exp(motion * (double(t_ns - end_t_ns) / double(duration_ns)));
   };
+}
+
+// More of the sweep's features within the loss scale of a line or plane; on a tie, the smaller rms residual.
+bool fits_better(const RegistrationResult& a, const RegistrationResult& b) {
+  const double inliers_a = a.matched_fraction * a.inlier_fraction, inliers_b = b.matched_fraction * b.inlier_fraction;
+  if (inliers_a != inliers_b) return inliers_a > inliers_b;
+  return a.rms_residual_m < b.rms_residual_m;
 }
 
 double elapsed_ms(std::chrono::steady_clock::time_point start) {
@@ -46,8 +54,39 @@ YamlFields lidar_mapper_yaml_fields(LidarMapperConfig& c) {
   return fields;
 }
 
-LidarMapper::LidarMapper(const LidarMapperConfig& config, const SE3& T_I_L)
-    : config_(config), T_I_L_(T_I_L), map_(config.lidar.map) {}
+LidarMapper::LidarMapper(const LidarMapperConfig& config, const SE3& T_I_L, TimeNs sweep_period_ns, bool spinning)
+    : config_(config), T_I_L_(T_I_L), sweep_period_ns_(sweep_period_ns), spinning_(spinning), map_(config.lidar.map) {}
+
+RegistrationConfig LidarMapper::registration_without_prior() const {
+  constexpr double kMaxIterationFactor = 5.0;
+  RegistrationConfig c = config_.lidar.registration;
+  const double widened = std::max(1.0, model_deviation_.sigma_m() / c.loss_scale_m);
+  c.loss_scale_m *= widened;
+  c.max_outer_iterations = static_cast<int>(std::ceil(c.max_outer_iterations * std::min(widened, kMaxIterationFactor)));
+  return c;
+}
+
+void LidarMapper::vote_azimuth_clock(const LidarScan& scan, const std::vector<Vec3>& points_L,
+                                     const LidarMappingResult& instant) {
+  const TimeNs end_t_ns = instant.t_ns;
+  const SE3 motion = previous_->T_W_L.inverse() * instant.T_W_L;
+  if (rms_displacement_m(points_L, motion) < ModelDeviation::kMinMotion_m) return;  // at rest both fit alike
+  LidarScan timed = scan;
+  assign_azimuth_times(timed, ns_to_s(sweep_period_ns_));
+  const TimeNs timed_end_ns = timed.end_t_ns(), duration_ns = end_t_ns - previous_->end_t_ns;
+  const Vec6 xi = motion.log();
+  const FeatureScan features = dewarp(extract_features(timed, config_.lidar.rings, features_for_registration(config_.lidar)),
+                                      timed_end_ns, constant_velocity(xi, duration_ns, timed_end_ns));
+  const SE3 T_W_L_timed = instant.T_W_L * SE3::exp(xi * (double(timed_end_ns - end_t_ns) / double(duration_ns)));
+  const RegistrationResult r = register_scan(features, map_, T_W_L_timed, registration_without_prior());
+  azimuth_clock_.vote(r.rms_residual_m, instant.rms_residual_m);
+  if (azimuth_clock_.state() == AzimuthClockVote::State::kTimed) {
+    spdlog::info("LiDAR sweeps without point times: their azimuths give the times (they fit the map better so)");
+  } else if (azimuth_clock_.state() == AzimuthClockVote::State::kInstant) {
+    spdlog::info("LiDAR sweeps without point times: each taken as one instant (they fit the map worse with azimuth "
+                 "times: deskewed already)");
+  }
+}
 
 SE3 LidarMapper::motion_since_previous(TimeNs end_t_ns, const std::optional<SE3>& T_W_L_prior_end) const {
   if (T_W_L_prior_end && previous_->T_W_L_prior) return previous_->T_W_L_prior->inverse() * *T_W_L_prior_end;
@@ -57,7 +96,7 @@ SE3 LidarMapper::motion_since_previous(TimeNs end_t_ns, const std::optional<SE3>
 }
 
 RegistrationResult LidarMapper::reregister_lidar_only(const FeatureScan& raw, TimeNs end_t_ns, const SE3& T_W_L,
-                                                      FeatureScan& features) {
+                                                      FeatureScan& features, const RegistrationConfig& config) {
   // The registered motion of this sweep replaces the extrapolated one for dewarping (the role of LOAM's
   // scan-to-scan odometry), and the sweep is registered again from that solution.
   const Vec6 motion = (previous_->T_W_L.inverse() * T_W_L).log();
@@ -71,7 +110,7 @@ RegistrationResult LidarMapper::reregister_lidar_only(const FeatureScan& raw, Ti
                 previous_->T_W_L);
     first_raw_.reset();
   }
-  return register_scan(features, map_, T_W_L, config_.lidar.registration);
+  return register_scan(features, map_, T_W_L, config);
 }
 
 void LidarMapper::relocalize(const SE3& T_W_L_last, const std::vector<PosedFeatureScan>& scans) {
@@ -83,10 +122,18 @@ void LidarMapper::relocalize(const SE3& T_W_L_last, const std::vector<PosedFeatu
   map_ = build_feature_map(config_.lidar.map, scans, T_W_L_last.translation());
 }
 
-LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior,
+LidarMappingResult LidarMapper::process(const LidarScan& sweep, const std::function<SE3(TimeNs)>& T_W_I_prior,
                                         const std::function<SE3(TimeNs)>& T_O_I_dewarp, double prior_tilt_sigma_rad) {
   const auto start = std::chrono::steady_clock::now();
-  if (scan.points.empty()) throw InputError("lidar scan", "empty scan at t_ns " + std::to_string(scan.t_ns));
+  if (sweep.points.empty()) throw InputError("lidar scan", "empty scan at t_ns " + std::to_string(sweep.t_ns));
+  // A spinning sweep without per-point times: one instant at its stamp until the azimuth clock is voted in.
+  const bool clock_open = spinning_ && config_.dewarp && sweep_period_ns_ > 0 && !has_point_times(sweep);
+  std::optional<LidarScan> timed;
+  if (clock_open && azimuth_clock_.state() == AzimuthClockVote::State::kTimed) {
+    timed = sweep;
+    assign_azimuth_times(*timed, ns_to_s(sweep_period_ns_));
+  }
+  const LidarScan& scan = timed ? *timed : sweep;
   const TimeNs end_t_ns = scan.end_t_ns();
   if (previous_ && end_t_ns <= previous_->end_t_ns) {
     throw InputError("lidar scan", "scan ending at " + std::to_string(end_t_ns) + " ns is not after the previous one");
@@ -130,10 +177,16 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
   } else {
     // Paper: L*_{k+1} = L_k T_trans.
     const SE3 T_trans = motion_since_previous(end_t_ns, T_W_L_prior_end);
-    RegistrationResult r =
-        register_scan(features, map_, previous_->T_W_L * T_trans, config_.lidar.registration, out.up_L_prior,
-                      out.up_L_prior_sigma_rad);
-    if (lidar_only_refine) r = reregister_lidar_only(raw, end_t_ns, r.T_W_L, features);
+    const RegistrationConfig registration = has_prior ? config_.lidar.registration : registration_without_prior();
+    RegistrationResult r = register_scan(features, map_, previous_->T_W_L * T_trans, registration, out.up_L_prior,
+                                         out.up_L_prior_sigma_rad);
+    if (!has_prior && (!r.converged || registration.loss_scale_m > config_.lidar.registration.loss_scale_m)) {
+      // A turn the constant-velocity model carries on after it stopped (a hand-held sensor at 2 Hz turns 43 deg in
+      // one sweep and 9 in the next): registered again from the last pose, the better fit is kept.
+      RegistrationResult from_last = register_scan(features, map_, previous_->T_W_L, registration);
+      if (fits_better(from_last, r)) r = std::move(from_last);
+    }
+    if (lidar_only_refine) r = reregister_lidar_only(raw, end_t_ns, r.T_W_L, features, registration);
     out.T_W_L = r.T_W_L;
     out.degenerate = r.degeneracy.degenerate();
     out.degenerate_directions = r.degeneracy.degenerate_directions;
@@ -144,7 +197,8 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
     out.rms_residual_m = r.rms_residual_m;
     out.matched_fraction = r.matched_fraction;
     out.inlier_fraction = r.inlier_fraction;
-    out.gap_s = std::max(0.0, ns_to_s(scan.t_ns - previous_->end_t_ns));
+    const TimeNs start_t_ns = end_t_ns > scan.t_ns ? scan.t_ns : end_t_ns - sweep_period_ns_;
+    out.gap_s = std::max(0.0, ns_to_s(start_t_ns - previous_->end_t_ns));
     out.converged = r.converged;
     const SE3 correction = (previous_->T_W_L * T_trans).inverse() * out.T_W_L;  // the jump from the prediction
     out.correction_m = correction.translation().norm();
@@ -160,6 +214,18 @@ LidarMappingResult LidarMapper::process(const LidarScan& scan, const std::functi
   }
   out.num_edge_features = static_cast<int>(features.edges.size());
   out.num_surface_features = static_cast<int>(features.surfaces.size());
+  if (previous_) {
+    std::vector<Vec3> points_L;
+    for (const FeaturePoint& f : features.surfaces) points_L.push_back(f.p_L);
+    for (const FeaturePoint& f : features.edges) points_L.push_back(f.p_L);
+    if (!has_prior) {
+      model_deviation_.add(points_L, (previous_->T_W_L * out.T_prev_predicted).inverse() * out.T_W_L,
+                           previous_->T_W_L.inverse() * out.T_W_L);
+    }
+    if (clock_open && azimuth_clock_.state() == AzimuthClockVote::State::kUndecided) {
+      vote_azimuth_clock(sweep, points_L, out);  // before the sweep enters the map it is compared with
+    }
+  }
   map_.insert(features, out.T_W_L);
   last_features_ = std::move(features);
 

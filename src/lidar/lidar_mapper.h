@@ -11,8 +11,10 @@
 #include "common/lie.h"
 #include "common/types.h"
 #include "lidar/feature_map.h"
+#include "lidar/azimuth_times.h"
 #include "lidar/lidar_config.h"
 #include "lidar/mapping_loss.h"
+#include "lidar/model_deviation.h"
 #include "lidar/registration.h"
 
 namespace vilslam::lidar {
@@ -63,7 +65,12 @@ struct LidarMappingResult {
 
 class LidarMapper {
  public:
-  LidarMapper(const LidarMapperConfig& config, const SE3& T_I_L);
+  // sweep_period_ns: the sensor's nominal sweep period; a sweep without per-point times (one instant) is taken
+  // to span it before its stamp when its gap to the previous sweep is measured (0: such a sweep spans nothing).
+  // spinning: the sensor's traits show a spinning head (lidar/sensor_traits.h), so a sweep without per-point
+  // times may take them from its azimuths at that period; whether it should is decided by the first moving sweeps
+  // (azimuth_clock_, lidar/azimuth_times.h): the sweeps of a spinning head may come deskewed already.
+  LidarMapper(const LidarMapperConfig& config, const SE3& T_I_L, TimeNs sweep_period_ns = 0, bool spinning = false);
 
   // T_W_I_prior: IMU-rate VIO pose at any time covering [scan.t_ns, scan end]; an empty function gives
   // LiDAR-only mapping. T_O_I_dewarp: when given, the sweep is dewarped with its relative poses instead
@@ -97,10 +104,21 @@ class LidarMapper {
   SE3 motion_since_previous(TimeNs end_t_ns, const std::optional<SE3>& T_W_L_prior_end) const;
   // LiDAR-only: dewarps the sweep with the motion of its first registration T_W_L and registers it again.
   RegistrationResult reregister_lidar_only(const FeatureScan& raw, TimeNs end_t_ns, const SE3& T_W_L,
-                                           FeatureScan& features);
+                                           FeatureScan& features, const RegistrationConfig& config);
+  // The registration without a motion prior: its robust kernel at least the constant-velocity model's observed
+  // deviation / 3 (KISS-ICP), and as many more outer iterations as the kernel widened, up to 5x.
+  RegistrationConfig registration_without_prior() const;
+  // A spinning sweep without per-point times, registered as one instant (instant.T_W_L): one vote of the azimuth
+  // clock, from the fit of the same sweep with azimuth times dewarped by its registered motion.
+  // points_L: the sweep's features at its end.
+  void vote_azimuth_clock(const LidarScan& scan, const std::vector<Vec3>& points_L, const LidarMappingResult& instant);
 
   LidarMapperConfig config_;
   SE3 T_I_L_;
+  TimeNs sweep_period_ns_;
+  bool spinning_;
+  AzimuthClockVote azimuth_clock_;
+  ModelDeviation model_deviation_;  // of the constant-velocity predictions (sweeps without a prior)
   FeatureMap map_;
   std::optional<Previous> previous_;
   // The last poses registered with a prior (end time, T_W_L): their mean motion predicts a VIO outage's sweeps.

@@ -10,6 +10,7 @@
 #include "io/dataset_index.h"
 #include "lidar/azimuth_times.h"
 #include "lidar/dewarp.h"
+#include "lidar/sensor_traits.h"
 
 namespace vilslam::map {
 
@@ -114,6 +115,7 @@ MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory
   if (index.scans.empty()) throw InputError(dataset_path, "dataset has no LiDAR scans");
   const TimeNs offset_ns = index.calibration.lidar_time_offset_ns;
   const TimeNs max_gap_ns = s_to_ns(config.max_pose_gap_s);
+  const lidar::SensorTraits traits = lidar::first_sweep_traits(index);  // as the run read them (pipeline/lidar_feeder.h)
   for (std::size_t i = 0; i < index.scans.size(); ++i) {
     if (progress) progress(double(i) / index.scans.size());
     const ScanEntry& entry = index.scans[i];
@@ -125,7 +127,7 @@ MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory
     }
     LidarScan scan = load_scan(index, i);
     scan.t_ns += offset_ns;
-    if (config.dewarp) lidar::fill_missing_point_times(scan, index.calibration.lidar);  // as the run did
+    if (config.dewarp) lidar::fill_missing_point_times(scan, traits, index.calibration.lidar.rate_hz);  // as the run did
     if (scan.points.empty() || !covers(T_W_L, scan.t_ns, scan.end_t_ns(), max_gap_ns) ||
         (!config.motion.empty() && !covers(config.motion, scan.t_ns, scan.end_t_ns(), max_gap_ns))) {
       ++result.stats.sweeps_skipped;

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 
+#include "common/error.h"
+#include "common/log.h"
 #include "lidar/azimuth_times.h"
+#include "lidar/sensor_adaptation.h"
 
 namespace vilslam {
 
@@ -11,14 +14,34 @@ LidarFeeder::LidarFeeder(const lidar::LidarMapperConfig& config, const RigCalibr
                          const std::vector<double>* imu_tilt_sigma_rad,
                          std::vector<lidar::LidarMappingResult>* results,
                          std::vector<lidar::LidarMappingResult>* rejected, LoopClosureModule* loop)
-    : mapper_(config, calib.T_I_L), offset_ns_(calib.lidar_time_offset_ns), lidar_(calib.lidar),
+    : config_(config), T_I_L_(calib.T_I_L), offset_ns_(calib.lidar_time_offset_ns), rate_hz_(calib.lidar.rate_hz),
       dewarp_(config.dewarp), imu_poses_(imu_poses), imu_motion_(imu_motion),
       imu_tilt_sigma_rad_(imu_tilt_sigma_rad), results_(results), rejected_(rejected), loop_(loop),
       lost_after_rejected_(config.loss.lost_after_rejected) {}
 
+bool LidarFeeder::know_sensor(const LidarScan& scan) {
+  if (traits_) return true;
+  try {
+    traits_ = lidar::read_sensor_traits(scan);
+  } catch (const InputError& e) {
+    spdlog::warn("{}", e.what());
+    return false;
+  }
+  mapper_.emplace(lidar::adapt_to_sensor(config_, *traits_), T_I_L_, s_to_ns(1.0 / rate_hz_), traits_->spinning());
+  return true;
+}
+
+TimeNs LidarFeeder::latest_end_t_ns(const LidarScan& scan) const {
+  const bool may_take_azimuth_times = dewarp_ && traits_->spinning() && !lidar::has_point_times(scan);
+  return may_take_azimuth_times ? scan.t_ns + s_to_ns(1.0 / rate_hz_) : scan.end_t_ns();
+}
+
 void LidarFeeder::scan(LidarScan scan) {
   scan.t_ns += offset_ns_;
-  if (dewarp_) lidar::fill_missing_point_times(scan, lidar_);
+  if (!know_sensor(scan)) {
+    ++unmapped_;
+    return;
+  }
   if (!imu_poses_) {
     map(scan, {}, {});
     return;
@@ -41,7 +64,7 @@ void LidarFeeder::poses_advanced() {
     lost_after_.reset();
   }
   while (!lost_after_ && !waiting_.empty() && !imu_poses_->empty() &&
-         imu_poses_->back().t_ns >= waiting_.front().end_t_ns()) {
+         imu_poses_->back().t_ns >= latest_end_t_ns(waiting_.front())) {
     const LidarScan& scan = waiting_.front();
     if (scan.t_ns < imu_poses_->front().t_ns) {
       ++unmapped_;  // the VIO was not initialized yet at the sweep's start
@@ -53,7 +76,7 @@ void LidarFeeder::poses_advanced() {
       // The VIO's tilt standard deviation at the first IMU-rate pose from the sweep's end on.
       double tilt_sigma_rad = 0.0;
       if (imu_tilt_sigma_rad_) {
-        const auto at_end = std::lower_bound(imu_poses_->begin(), imu_poses_->end(), scan.end_t_ns(),
+        const auto at_end = std::lower_bound(imu_poses_->begin(), imu_poses_->end(), latest_end_t_ns(scan),
                                              [](const TimedPose& p, TimeNs t) { return p.t_ns < t; });
         tilt_sigma_rad = (*imu_tilt_sigma_rad_)[static_cast<std::size_t>(at_end - imu_poses_->begin())];
       }
@@ -72,10 +95,10 @@ void LidarFeeder::map(const LidarScan& scan, const std::function<SE3(TimeNs)>& T
   // A loop correction that arrived since the last sweep comes first (paper, "Re-localization").
   if (loop_) {
     if (const auto correction = loop_->take_correction()) {
-      mapper_.relocalize(correction->T_W_L_last, correction->key_scans);
+      mapper_->relocalize(correction->T_W_L_last, correction->key_scans);
     }
   }
-  lidar::LidarMappingResult result = mapper_.process(scan, T_W_I_prior, T_O_I_dewarp, prior_tilt_sigma_rad);
+  lidar::LidarMappingResult result = mapper_->process(scan, T_W_I_prior, T_O_I_dewarp, prior_tilt_sigma_rad);
   if (result.loss != lidar::MappingLoss::kNone) {
     if (++rejected_in_a_row_ >= lost_after_rejected_) mapper_lost_t_ns_ = result.t_ns;
     rejected_->push_back(std::move(result));
@@ -83,7 +106,7 @@ void LidarFeeder::map(const LidarScan& scan, const std::function<SE3(TimeNs)>& T
   }
   rejected_in_a_row_ = 0;
   results_->push_back(std::move(result));
-  if (loop_) loop_->scan_mapped(results_->back(), mapper_.last_features());
+  if (loop_) loop_->scan_mapped(results_->back(), mapper_->last_features());
 }
 
 }  // namespace vilslam

@@ -11,6 +11,7 @@
 #include "common/calibration.h"
 #include "common/types.h"
 #include "lidar/lidar_mapper.h"
+#include "lidar/sensor_traits.h"
 #include "pipeline/loop_closure_module.h"
 
 namespace vilslam {
@@ -46,15 +47,27 @@ class LidarFeeder {
   // Sweeps still waiting for the VIO poses to reach their end.
   std::size_t waiting_scans() const { return waiting_.size(); }
   // The newest mapped sweep's features as registered (lidar/lidar_mapper.h).
-  const lidar::FeatureScan& last_features() const { return mapper_.last_features(); }
+  const lidar::FeatureScan& last_features() const { return mapper_->last_features(); }
+  // The sensor's traits, read off the first sweep with enough returns (lidar/sensor_traits.h); none before it.
+  const std::optional<lidar::SensorTraits>& sensor_traits() const { return traits_; }
 
  private:
   void map(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior,
            const std::function<SE3(TimeNs)>& T_O_I_dewarp, double prior_tilt_sigma_rad = 0.0);
 
-  lidar::LidarMapper mapper_;
+  // Reads the sensor's traits off scan and builds the mapper for them, once; false while no sweep had enough
+  // returns (such a sweep is left unmapped).
+  bool know_sensor(const LidarScan& scan);
+
+  // The end of scan's sweep, or where it ends once the mapper gives it azimuth times (lidar_mapper.h).
+  TimeNs latest_end_t_ns(const LidarScan& scan) const;
+
+  lidar::LidarMapperConfig config_;  // as given; the mapper's is adapted to the sensor's traits
+  std::optional<lidar::SensorTraits> traits_;
+  std::optional<lidar::LidarMapper> mapper_;
+  SE3 T_I_L_;
   TimeNs offset_ns_;
-  LidarIntrinsics lidar_;  // spinning (rings) and rate: per-point times from the azimuth when a sweep has none
+  double rate_hz_;  // the calibration's sweep rate
   bool dewarp_;
   const Trajectory* imu_poses_;
   const Trajectory* imu_motion_;

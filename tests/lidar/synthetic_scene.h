@@ -9,6 +9,7 @@
 
 #include "common/lie.h"
 #include "common/types.h"
+#include "sim/lidar_beams.h"
 #include "sim/rng.h"
 
 namespace vilslam::test {
@@ -130,6 +131,29 @@ inline double distance_to_scene_edges(const Scene& scene, const Vec3& p, bool ve
 inline SE3 moving_pose(TimeNs t_ns) {
   const double t = ns_to_s(t_ns);
   return SE3(so3::exp(Vec3(0, 0, 60.0 * M_PI / 180.0 * t)), Vec3(3.0 * t - 1.0, 0.5, 0.2));
+}
+
+// One still sweep of the simulator's non-repetitive sensor (Mid-360 pattern) in the box room, with 2 cm
+// range noise: no ring field, points in firing order.
+inline LidarScan non_repetitive_sweep(const Scene& scene, const SE3& T_W_L) {
+  const sim::LidarSimConfig config = sim::lidar_sensor("mid360");
+  sim::Rng rng(3);
+  LidarScan scan;
+  scan.has_ring = false;
+  for (int k = 0; k < sim::num_columns(config); ++k) {
+    for (int head = 0; head < sim::beams_per_column(config); ++head) {
+      const Vec3 d_L = sim::beam_direction_L(config, head, k);
+      const double range = cast(scene, T_W_L.translation(), T_W_L.rotation() * d_L) + 0.02 * rng.gaussian();
+      const Vec3 p_L = range * d_L;
+      LidarPoint p;
+      p.x = static_cast<float>(p_L.x());
+      p.y = static_cast<float>(p_L.y());
+      p.z = static_cast<float>(p_L.z());
+      p.t_offset_s = static_cast<float>(ns_to_s(sim::column_offset_ns(config, k)));
+      scan.points.push_back(p);
+    }
+  }
+  return scan;
 }
 
 }  // namespace vilslam::test

@@ -77,21 +77,22 @@ TEST(AzimuthTimes, PointsAtTheStartAzimuthOpenOrCloseTheSweepByFileOrder) {
 
 TEST(AzimuthTimes, OnlySpinningSweepsWithoutTimesAreFilled) {
   const LidarScan raw = test::sweep(test::box_room(), test::moving_pose, 0);
-  LidarIntrinsics spinning;  // 16 rings at 10 Hz
+  const SensorTraits spinning = read_sensor_traits(raw);  // 16 rings
+  ASSERT_TRUE(spinning.spinning());
   LidarScan with_times = raw;
-  EXPECT_FALSE(fill_missing_point_times(with_times, spinning));
+  EXPECT_FALSE(fill_missing_point_times(with_times, spinning, 10.0));
   EXPECT_EQ(times_of(with_times), times_of(raw));
 
   LidarScan without = raw;
   for (LidarPoint& p : without.points) p.t_offset_s = 0.0f;
-  LidarIntrinsics solid_state = spinning;
-  solid_state.num_rings = 0;  // non-repetitive: no azimuth order to recover
+  SensorTraits non_repetitive = spinning;
+  non_repetitive.ring_field = false;
+  non_repetitive.rings = 0;  // no azimuth order to recover
   LidarScan kept = without;
-  EXPECT_FALSE(fill_missing_point_times(kept, solid_state));
+  EXPECT_FALSE(fill_missing_point_times(kept, non_repetitive, 10.0));
   EXPECT_FALSE(has_point_times(kept));
 
-  spinning.rate_hz = 20.0;
-  EXPECT_TRUE(fill_missing_point_times(without, spinning));
+  EXPECT_TRUE(fill_missing_point_times(without, spinning, 20.0));
   EXPECT_NEAR(ns_to_s(without.end_t_ns() - without.t_ns), 0.05, 1e-4);
 }
 

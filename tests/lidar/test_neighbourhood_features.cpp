@@ -3,35 +3,10 @@
 #include <cmath>
 
 #include "lidar/features.h"
-#include "sim/lidar_beams.h"
-#include "sim/rng.h"
 #include "synthetic_scene.h"
 
 namespace vilslam::lidar {
 namespace {
-
-// One still sweep of the simulator's non-repetitive sensor (Mid-360 pattern) in the box room, with 2 cm
-// range noise: no ring field, points in firing order.
-LidarScan non_repetitive_sweep(const test::Scene& scene, const SE3& T_W_L) {
-  const sim::LidarSimConfig config = sim::lidar_sensor("mid360");
-  sim::Rng rng(3);
-  LidarScan scan;
-  scan.has_ring = false;
-  for (int k = 0; k < sim::num_columns(config); ++k) {
-    for (int head = 0; head < sim::beams_per_column(config); ++head) {
-      const Vec3 d_L = sim::beam_direction_L(config, head, k);
-      const double range = test::cast(scene, T_W_L.translation(), T_W_L.rotation() * d_L) + 0.02 * rng.gaussian();
-      const Vec3 p_L = range * d_L;
-      LidarPoint p;
-      p.x = static_cast<float>(p_L.x());
-      p.y = static_cast<float>(p_L.y());
-      p.z = static_cast<float>(p_L.z());
-      p.t_offset_s = static_cast<float>(ns_to_s(sim::column_offset_ns(config, k)));
-      scan.points.push_back(p);
-    }
-  }
-  return scan;
-}
 
 TEST(NeighbourhoodFeatures, AutoChoosesRingsOnlyWhereTheScanHasThem) {
   const test::Scene scene = test::box_room();
@@ -42,7 +17,7 @@ TEST(NeighbourhoodFeatures, AutoChoosesRingsOnlyWhereTheScanHasThem) {
   spinning.has_ring = false;
   EXPECT_GT(fraction_on_rings(spinning, RingConfig{}), 0.95);
   EXPECT_EQ(resolve_feature_method(spinning, RingConfig{}, FeatureMethod::kAuto), FeatureMethod::kRings);
-  const LidarScan free = non_repetitive_sweep(scene, T_W_L);
+  const LidarScan free = test::non_repetitive_sweep(scene, T_W_L);
   EXPECT_LT(fraction_on_rings(free, RingConfig{}), 0.7);
   EXPECT_EQ(resolve_feature_method(free, RingConfig{}, FeatureMethod::kAuto), FeatureMethod::kNeighbourhood);
   EXPECT_EQ(resolve_feature_method(free, RingConfig{}, FeatureMethod::kRings), FeatureMethod::kRings);
@@ -51,7 +26,7 @@ TEST(NeighbourhoodFeatures, AutoChoosesRingsOnlyWhereTheScanHasThem) {
 TEST(NeighbourhoodFeatures, EdgesOnBoxEdgesAndSurfacesOnFaces) {
   const test::Scene scene = test::box_room();
   const SE3 T_W_L(Quat::Identity(), Vec3(0.5, -1.0, 0.0));
-  const LidarScan scan = non_repetitive_sweep(scene, T_W_L);
+  const LidarScan scan = test::non_repetitive_sweep(scene, T_W_L);
   const FeatureConfig config;
   const FeatureScan f = extract_features(scan, RingConfig{}, config);
   const NeighbourhoodFeatureConfig& n = config.neighbourhood;
