@@ -45,12 +45,23 @@ Trajectory load(const std::string& path, const std::string& format, const std::s
   return read_trajectory(path, f, times);
 }
 
-void print_stats_row(const char* label, const eval::ErrorStats& s) {
-  std::printf("%-16s %10.5f %10.5f %10.5f %10.5f %10.5f %10.5f %7zu\n", label, s.rmse, s.mean, s.median, s.std, s.min,
-              s.max, s.count);
+void print_stats_row(const char* label, const eval::ErrorStats& s, const std::string& note = {}) {
+  std::printf("%-16s %10.5f %10.5f %10.5f %10.5f %10.5f %10.5f %7zu%s\n", label, s.rmse, s.mean, s.median, s.std, s.min,
+              s.max, s.count, note.c_str());
+}
+
+// A run that lost track leaves part of the reference unmatched: its ATE is over the rest only, and says so.
+constexpr double kMinFullCoverage = 0.95;
+
+std::string coverage_note(double coverage) {
+  char note[96];
+  std::snprintf(note, sizeof note, "   over %.1f %% of the reference%s", 100.0 * coverage,
+                coverage < kMinFullCoverage ? " (less than 95 %: part of the run only)" : "");
+  return note;
 }
 
 void print(const eval::TrajectoryEvalReport& r, const Options& o) {
+  std::printf("reference coverage: %.4f\n", r.reference_coverage);
   std::printf("matched poses: %zu\nalignment: %s (scale %.6f, first %s poses)\n", r.matched_poses,
               eval::align_mode_name(r.alignment.mode).c_str(), r.alignment.scale,
               o.align_first_n == 0 ? "all" : std::to_string(o.align_first_n).c_str());
@@ -64,7 +75,7 @@ void print(const eval::TrajectoryEvalReport& r, const Options& o) {
   }
   std::printf("RPE: delta %g %s, consecutive pairs\n", o.delta, o.delta_unit.c_str());
   std::printf("%-16s %10s %10s %10s %10s %10s %10s %7s\n", "metric", "rmse", "mean", "median", "std", "min", "max", "n");
-  print_stats_row("APE [m]", r.ape.trans);
+  print_stats_row("APE [m]", r.ape.trans, coverage_note(r.reference_coverage));
   print_stats_row("APE rot [deg]", r.ape.rot);
   print_stats_row("RPE [m]", r.rpe.trans);
   print_stats_row("RPE rot [deg]", r.rpe.rot);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <memory>
 #include <stdexcept>
@@ -35,6 +36,15 @@ void set_window(const Options& o, TimeNs first_pose_t_ns, map::MapBuilderConfig*
     if (value && !std::isfinite(*value)) throw std::invalid_argument(std::string(name) + " must be finite");
   if (o.start_s) config->window_start_ns = first_pose_t_ns + s_to_ns(*o.start_s);
   if (o.end_s) config->window_end_ns = first_pose_t_ns + s_to_ns(*o.end_s);
+}
+
+// The run that made the poses (its lidar_sensor.txt beside them) took sweeps without point times as instants.
+bool run_took_instants(const std::string& poses_path) {
+  std::ifstream in(std::filesystem::path(poses_path).parent_path() / "lidar_sensor.txt");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("lidar_azimuth_times: ", 0) == 0) return line != "lidar_azimuth_times: yes";
+  }
+  return false;
 }
 
 void check_cloud_extension(const std::string& path) {
@@ -70,6 +80,7 @@ vilslam::cli::Command reg("map", "Dense map: the dataset's sweeps dewarped and s
     const Trajectory T_W_L = read_trajectory(o->poses_path, TrajectoryFormat::kTum);
     if (T_W_L.empty()) throw InputError(o->poses_path, "no poses");
     o->config.dewarp = !o->no_dewarp;
+    o->config.azimuth_times = !run_took_instants(o->poses_path);
     o->config.drop_mixed_pixels = !o->keep_mixed_pixels;
     if (!o->motion_path.empty()) o->config.motion = read_trajectory(o->motion_path, TrajectoryFormat::kTum);
     set_window(*o, T_W_L.front().t_ns, &o->config);

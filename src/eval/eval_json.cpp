@@ -57,6 +57,7 @@ std::string trajectory_report_json(const TrajectoryEvalReport& r, const Trajecto
   json.key("fde_start_aligned_percent").value(r.fde_start_aligned.percent);
   json.key("path_length_m").value(r.path_length_m);
   json.key("matched_poses").value(static_cast<std::uint64_t>(r.matched_poses));
+  json.key("reference_coverage").value(r.reference_coverage);
   json.key("alignment").begin_object();
   json.key("mode").value(align_mode_name(r.alignment.mode));
   json.key("first_n").value(static_cast<std::uint64_t>(config.align_first_n));

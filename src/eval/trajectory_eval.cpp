@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/coverage.h"
 #include "eval/tilt_error.h"
 
 namespace vilslam::eval {
@@ -17,6 +18,10 @@ TrajectoryEvalReport evaluate_trajectory(const Trajectory& est, const Trajectory
   const Trajectory est_matched = select(est, assoc.est_ids);
   TrajectoryEvalReport r;
   r.matched_poses = assoc.size();
+  std::vector<TimeNs> matched_t_ns;
+  for (const TimedPose& p : gt_matched) matched_t_ns.push_back(p.t_ns);
+  r.reference_coverage = coverage_of(matched_t_ns, std::vector<bool>(matched_t_ns.size(), true),
+                                     ns_to_s(gt.back().t_ns - gt.front().t_ns)).published;
   r.alignment = align_trajectories(est_matched, gt_matched, config.align, config.align_first_n);
   const Trajectory est_aligned = apply_alignment(est_matched, r.alignment);
   r.ape = compute_ape(gt_matched, est_aligned);

@@ -23,6 +23,9 @@ struct TrajectoryEvalConfig {
 
 struct TrajectoryEvalReport {
   std::size_t matched_poses = 0;
+  // The fraction of the reference's time span the matched poses cover (common/coverage.h): the APE and RPE are
+  // over that part only.
+  double reference_coverage = 0.0;
   Alignment alignment;
   PoseErrors ape;   // on the aligned estimate
   PoseErrors rpe;   // on the aligned estimate (invariant to se3/posyaw alignment; sim3 fixes the scale)

@@ -57,6 +57,15 @@ YamlFields lidar_mapper_yaml_fields(LidarMapperConfig& c) {
 LidarMapper::LidarMapper(const LidarMapperConfig& config, const SE3& T_I_L, TimeNs sweep_period_ns, bool spinning)
     : config_(config), T_I_L_(T_I_L), sweep_period_ns_(sweep_period_ns), spinning_(spinning), map_(config.lidar.map) {}
 
+std::string LidarMapper::azimuth_times() const {
+  switch (azimuth_clock_.state()) {
+    case AzimuthClockVote::State::kTimed: return "yes";
+    case AzimuthClockVote::State::kInstant: return "no";
+    case AzimuthClockVote::State::kUndecided: break;
+  }
+  return "undecided";
+}
+
 RegistrationConfig LidarMapper::registration_without_prior() const {
   constexpr double kMaxIterationFactor = 5.0;
   RegistrationConfig c = config_.lidar.registration;

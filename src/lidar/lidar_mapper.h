@@ -83,6 +83,9 @@ class LidarMapper {
                              const std::function<SE3(TimeNs)>& T_O_I_dewarp = {}, double prior_tilt_sigma_rad = 0.0);
 
   const FeatureMap& map() const { return map_; }
+  // Whether sweeps without point times took azimuth times: "yes" or "no" once the first moving sweeps voted,
+  // "undecided" before (they are instants meanwhile).
+  std::string azimuth_times() const;
   // The last sweep's features as registered: dewarped to its end, in its LiDAR frame.
   const FeatureScan& last_features() const { return last_features_; }
 

@@ -117,7 +117,7 @@ std::string sensor_traits_text(const SensorTraits& t) {
                 "lidar_elevation_deg: %.1f to %.1f\nlidar_azimuth_coverage: %.2f\n"
                 "lidar_range_m: p10 %.2f, median %.2f, p90 %.2f, max %.2f\n",
                 t.points, t.ring_field ? "yes" : "no", t.rings,
-                t.spinning() ? "spinning: azimuth gives a point's time" : "non-repetitive: no azimuth clock",
+                t.spinning() ? "a spinning head" : "none: a non-repetitive pattern",
                 t.point_times ? "yes" : "no", t.min_elevation_deg, t.max_elevation_deg, t.azimuth_coverage,
                 t.range_p10_m, t.range_median_m, t.range_p90_m, t.range_max_m);
   return text;

@@ -127,7 +127,9 @@ MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory
     }
     LidarScan scan = load_scan(index, i);
     scan.t_ns += offset_ns;
-    if (config.dewarp) lidar::fill_missing_point_times(scan, traits, index.calibration.lidar.rate_hz);  // as the run did
+    if (config.dewarp && config.azimuth_times) {
+      lidar::fill_missing_point_times(scan, traits, index.calibration.lidar.rate_hz);  // as the run did
+    }
     if (scan.points.empty() || !covers(T_W_L, scan.t_ns, scan.end_t_ns(), max_gap_ns) ||
         (!config.motion.empty() && !covers(config.motion, scan.t_ns, scan.end_t_ns(), max_gap_ns))) {
       ++result.stats.sweeps_skipped;

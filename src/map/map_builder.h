@@ -19,6 +19,9 @@ struct MapBuilderConfig {
   double max_range_m = 50.0;    // and farther ones (pose errors grow with range)
   double max_pose_gap_s = 0.25; // a sweep needs poses no farther apart than this over its whole span
   bool dewarp = true;           // false: every point takes the sweep-end pose (for comparison)
+  // A spinning head's sweeps without point times take azimuth times (lidar/azimuth_times.h); false: each is one
+  // instant, as the run found them deskewed already (its lidar_sensor.txt says "lidar_azimuth_times: no").
+  bool azimuth_times = true;
   // Mixed pixels (lidar/mixed_pixels.h) lie on no surface; sweeps with rings drop them unless this is false.
   bool drop_mixed_pixels = true;
   lidar::MixedPixelConfig mixed_pixels;

@@ -36,6 +36,13 @@ TimeNs LidarFeeder::latest_end_t_ns(const LidarScan& scan) const {
   return may_take_azimuth_times ? scan.t_ns + s_to_ns(1.0 / rate_hz_) : scan.end_t_ns();
 }
 
+std::string LidarFeeder::sensor_report() const {
+  if (!traits_) return {};
+  const bool may_need = dewarp_ && traits_->spinning() && !traits_->point_times;
+  return lidar::sensor_traits_text(*traits_) + "lidar_azimuth_times: " + (may_need ? mapper_->azimuth_times() : "no") +
+         "\n";
+}
+
 void LidarFeeder::scan(LidarScan scan) {
   scan.t_ns += offset_ns_;
   if (!know_sensor(scan)) {

@@ -48,8 +48,10 @@ class LidarFeeder {
   std::size_t waiting_scans() const { return waiting_.size(); }
   // The newest mapped sweep's features as registered (lidar/lidar_mapper.h).
   const lidar::FeatureScan& last_features() const { return mapper_->last_features(); }
-  // The sensor's traits, read off the first sweep with enough returns (lidar/sensor_traits.h); none before it.
-  const std::optional<lidar::SensorTraits>& sensor_traits() const { return traits_; }
+  // The sensor as the run read it (lidar_sensor.txt): its traits, off the first sweep with enough returns
+  // (lidar/sensor_traits.h), and "lidar_azimuth_times: yes|no|undecided" for sweeps without point times of a
+  // spinning head (lidar_mapper.h). Empty before a sweep was read.
+  std::string sensor_report() const;
 
  private:
   void map(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior,

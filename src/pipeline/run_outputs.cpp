@@ -9,6 +9,7 @@
 #include "common/publish_dir.h"
 #include "io/trajectory_io.h"
 #include "loop/loop_constraints_io.h"
+#include "pipeline/coverage.h"
 #include "pipeline/run_config.h"
 #include "pipeline/run_status.h"
 #include "pipeline/timing_stats.h"
@@ -73,6 +74,17 @@ std::string timings_json(RunMode mode, const OfflineRunResult& r, const std::vec
   json.key("matches_min").value(min_it == r.matches_per_frame.end() ? 0 : *min_it);
   json.key("matches_max").value(max_it == r.matches_per_frame.end() ? 0 : *max_it);
   write_timings(json, series, "module");
+  // The fraction of the data span each module covered with published poses, and with tracking ones.
+  const RunCoverage coverage = run_coverage(r);
+  json.key("coverage").begin_object();
+  for (const auto& [name, module] : {std::pair{"vio", &coverage.vio}, std::pair{"lidar", &coverage.lidar}}) {
+    if (!*module) continue;
+    json.key(name).begin_object();
+    json.key("published").value((*module)->published);
+    json.key("tracking").value((*module)->tracking);
+    json.end_object();
+  }
+  json.end_object();
   json.key("lidar_unmapped_scans").value(static_cast<std::uint64_t>(r.unmapped_scans));
   json.key("lidar_rejected_scans").value(static_cast<std::uint64_t>(r.lidar_rejected.size()));
   json.key("lidar_lost_t_ns").begin_array();
@@ -233,6 +245,7 @@ void write_run_outputs(const std::string& out_dir, const OfflineRunConfig& confi
     }
   }
   if (mode != RunMode::kVio) {
+    if (!result.lidar_sensor.empty()) write_file_atomic((partial / "lidar_sensor.txt").string(), result.lidar_sensor);
     if (result.loop) {
       // With the loop closure module (vil): the odometry, the poses as published, the final graph.
       write_trajectory((partial / "lidar.tum").string(), result.loop->lidar_odometry, TrajectoryFormat::kTum);

@@ -78,6 +78,7 @@ void append_segment(OfflineRunResult& run, OfflineRunResult&& segment, TimeNs st
   append(run.lidar_rejected, std::move(segment.lidar_rejected));
   append(run.lidar_lost_t_ns, std::move(segment.lidar_lost_t_ns));
   run.unmapped_scans += segment.unmapped_scans;
+  if (run.lidar_sensor.empty()) run.lidar_sensor = std::move(segment.lidar_sensor);
   if (segment.loop) {
     if (!run.loop) run.loop.emplace();
     LoopClosureOutput& to = *run.loop;

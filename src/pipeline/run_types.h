@@ -108,6 +108,7 @@ struct OfflineRunResult {
   std::vector<lidar::LidarMappingResult> lidar_rejected;  // the sweeps mapping rejected (lidar/mapping_loss.h)
   std::vector<TimeNs> lidar_lost_t_ns;  // when LiDAR mapping was lost (at most once a segment)
   std::size_t unmapped_scans = 0;  // sweeps no VIO pose covered (vil), or after mapping was lost
+  std::string lidar_sensor;  // the LiDAR as the run read it (LidarFeeder::sensor_report; lidar_sensor.txt)
   std::optional<LoopClosureOutput> loop;  // vil: odometry, loop-corrected poses, loop candidates
   std::optional<TimeOffsetEstimate> time_offset;  // when estimated (config.time_offset.enabled) and observable
   std::vector<OnlineTimeOffsetUpdate> time_offset_online;  // config.time_offset.online: every estimate made

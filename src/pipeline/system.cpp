@@ -103,6 +103,7 @@ class LidarSide {
     publish();
     note_lost();
     result_->unmapped_scans = lidar_->unmapped_scans();
+    result_->lidar_sensor = lidar_->sensor_report();
     if (loop_) result_->loop = loop_->finish();
   }
 

@@ -38,7 +38,7 @@ TEST(SensorTraits, ANonRepetitivePatternHasNoRings) {
   EXPECT_EQ(t.rings, 0);
   EXPECT_FALSE(t.spinning());
   EXPECT_TRUE(t.point_times);
-  EXPECT_NE(sensor_traits_text(t).find("non-repetitive"), std::string::npos);
+  EXPECT_NE(sensor_traits_text(t).find("lidar_rings: 0 (none: a non-repetitive pattern)"), std::string::npos);
 }
 
 TEST(SensorTraits, TooFewReturnsIsAnError) {

@@ -50,6 +50,7 @@ TEST(RealLidarSequence, BalmMappedFromTheDataAloneAsWellAsKissIcp) {
   EXPECT_NEAR(traits.max_elevation_deg, 45.0, 2.0);
   // Deskewed already: each sweep is taken as one instant, not given azimuth times.
   EXPECT_NE(run.output.find("each taken as one instant"), std::string::npos) << run.output;
+  EXPECT_NE(test::read_file_bytes(out / "lidar_sensor.txt").find("lidar_azimuth_times: no\n"), std::string::npos);
 
   Trajectory reference;
   for (const GroundTruthState& s : index.groundtruth) reference.push_back({s.t_ns, s.T_W_I});  // T_I_L = identity
