@@ -115,7 +115,7 @@ class Node {
         sparse_map_(private_nh.advertise<sensor_msgs::PointCloud2>("sparse_map", 4)),
         tf_(nh.advertise<tf2_msgs::TFMessage>("/tf", 400)),
         calib_(calib), config_(config),
-        reset_on_lost_(config.reset_on_lidar_lost && config.mode == RunMode::kVil && config.loop.enabled),
+        reset_on_lost_(resets_on_lidar_lost(config)),
         system_(std::make_unique<System>(calib, config, callbacks())),
         input_(LiveInputConfig{}, LiveInputSink{[this](const ImuSample& s) {
                                                   system_->push_imu(s);

@@ -122,6 +122,11 @@ RegistrationResult LidarMapper::reregister_lidar_only(const FeatureScan& raw, Ti
   return register_scan(features, map_, T_W_L, config);
 }
 
+void LidarMapper::reanchor() {
+  map_ = FeatureMap(config_.lidar.map);
+  reanchored_ = previous_.has_value();
+}
+
 void LidarMapper::relocalize(const SE3& T_W_L_last, const std::vector<PosedFeatureScan>& scans) {
   if (!previous_) throw std::logic_error("LidarMapper::relocalize before the first sweep");
   // The prior-aided poses move with the last one, so that their mean motion stays a motion.
@@ -183,6 +188,11 @@ LidarMappingResult LidarMapper::process(const LidarScan& sweep, const std::funct
     // The first scan defines the map frame: the VIO world frame when a prior is given.
     out.T_W_L = T_W_L_prior_end.value_or(SE3());
     if (lidar_only_refine) first_raw_ = raw;
+  } else if (reanchored_) {
+    // A fresh map begins at the prediction: the last kept pose and the motion since (prior or constant velocity).
+    out.T_prev_predicted = motion_since_previous(end_t_ns, T_W_L_prior_end);
+    out.T_W_L = previous_->T_W_L * out.T_prev_predicted;
+    out.reanchored = true;
   } else {
     // Paper: L*_{k+1} = L_k T_trans.
     const SE3 T_trans = motion_since_previous(end_t_ns, T_W_L_prior_end);
@@ -223,7 +233,7 @@ LidarMappingResult LidarMapper::process(const LidarScan& sweep, const std::funct
   }
   out.num_edge_features = static_cast<int>(features.edges.size());
   out.num_surface_features = static_cast<int>(features.surfaces.size());
-  if (previous_) {
+  if (previous_ && !out.reanchored) {
     std::vector<Vec3> points_L;
     for (const FeaturePoint& f : features.surfaces) points_L.push_back(f.p_L);
     for (const FeaturePoint& f : features.edges) points_L.push_back(f.p_L);
@@ -236,6 +246,7 @@ LidarMappingResult LidarMapper::process(const LidarScan& sweep, const std::funct
     }
   }
   map_.insert(features, out.T_W_L);
+  reanchored_ = false;
   last_features_ = std::move(features);
 
   Previous next;

@@ -61,6 +61,7 @@ struct LidarMappingResult {
   // Rejected (lidar/mapping_loss.h): T_W_L is where the registration ended, not the sweep's pose, and the sweep
   // is not in the map; the mapper's last pose stays the one before it.
   MappingLoss loss = MappingLoss::kNone;
+  bool reanchored = false;  // the sweep began a fresh map at its predicted pose (LidarMapper::reanchor)
 };
 
 class LidarMapper {
@@ -93,6 +94,10 @@ class LidarMapper {
   // rebuilt from the scans at their corrected poses, so the next sweeps register against the corrected,
   // revisited map. Motion priors stay relative, so mapping resumes in the corrected frame.
   void relocalize(const SE3& T_W_L_last, const std::vector<PosedFeatureScan>& scans);
+
+  // The map no longer places the sweeps (the loss check rejected several in a row): it is dropped, and the next
+  // sweep starts a fresh one at its predicted pose (the last kept pose and the motion since), flagged reanchored.
+  void reanchor();
 
  private:
   struct Previous {
@@ -128,6 +133,7 @@ class LidarMapper {
   static constexpr std::size_t kAidedPoses = 11;
   std::deque<std::pair<TimeNs, SE3>> aided_poses_;
   std::optional<FeatureScan> first_raw_;
+  bool reanchored_ = false;  // the map was dropped: the next sweep starts it again
   FeatureScan last_features_;  // LiDAR-only: the first sweep's features until its motion is known
 };
 

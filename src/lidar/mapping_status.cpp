@@ -6,6 +6,7 @@ MappingStatus mapping_status(const LidarMappingResult& sweep, const MappingStatu
   if (sweep.loss == MappingLoss::kMismatched) return MappingStatus::kRejectedMismatched;
   if (sweep.loss == MappingLoss::kUnmatched) return MappingStatus::kRejectedUnmatched;
   if (sweep.loss == MappingLoss::kJump) return MappingStatus::kRejectedJump;
+  if (sweep.reanchored) return MappingStatus::kReanchored;
   if (sweep.gap_s > thresholds.gap_s) return MappingStatus::kAfterGap;
   if (!sweep.converged) return MappingStatus::kNotConverged;
   if (sweep.correction_m > thresholds.correction_m || sweep.correction_deg > thresholds.correction_deg) {
@@ -18,6 +19,7 @@ MappingStatus mapping_status(const LidarMappingResult& sweep, const MappingStatu
 std::string mapping_status_name(MappingStatus status) {
   switch (status) {
     case MappingStatus::kOk: return "ok";
+    case MappingStatus::kReanchored: return "reanchored";
     case MappingStatus::kDegenerate: return "degenerate";
     case MappingStatus::kAfterGap: return "after_gap";
     case MappingStatus::kNotConverged: return "not_converged";

@@ -13,11 +13,12 @@ LidarFeeder::LidarFeeder(const lidar::LidarMapperConfig& config, const RigCalibr
                          const Trajectory* imu_poses, const Trajectory* imu_motion,
                          const std::vector<double>* imu_tilt_sigma_rad,
                          std::vector<lidar::LidarMappingResult>* results,
-                         std::vector<lidar::LidarMappingResult>* rejected, LoopClosureModule* loop)
+                         std::vector<lidar::LidarMappingResult>* rejected, LoopClosureModule* loop,
+                         bool reanchor_when_lost)
     : config_(config), T_I_L_(calib.T_I_L), offset_ns_(calib.lidar_time_offset_ns), rate_hz_(calib.lidar.rate_hz),
       dewarp_(config.dewarp), imu_poses_(imu_poses), imu_motion_(imu_motion),
       imu_tilt_sigma_rad_(imu_tilt_sigma_rad), results_(results), rejected_(rejected), loop_(loop),
-      lost_after_rejected_(config.loss.lost_after_rejected) {}
+      lost_after_rejected_(config.loss.lost_after_rejected), reanchor_when_lost_(reanchor_when_lost) {}
 
 bool LidarFeeder::know_sensor(const LidarScan& scan) {
   if (traits_) return true;
@@ -107,7 +108,14 @@ void LidarFeeder::map(const LidarScan& scan, const std::function<SE3(TimeNs)>& T
   }
   lidar::LidarMappingResult result = mapper_->process(scan, T_W_I_prior, T_O_I_dewarp, prior_tilt_sigma_rad);
   if (result.loss != lidar::MappingLoss::kNone) {
-    if (++rejected_in_a_row_ >= lost_after_rejected_) mapper_lost_t_ns_ = result.t_ns;
+    if (++rejected_in_a_row_ >= lost_after_rejected_ && reanchor_when_lost_) {
+      spdlog::warn("LiDAR mapping re-anchored at t_ns={}: {} sweeps in a row did not fit the map; a fresh local map "
+                   "starts at the next sweep's predicted pose", result.t_ns, rejected_in_a_row_);
+      mapper_->reanchor();
+      rejected_in_a_row_ = 0;
+    } else if (rejected_in_a_row_ >= lost_after_rejected_) {
+      mapper_lost_t_ns_ = result.t_ns;
+    }
     rejected_->push_back(std::move(result));
     return;
   }

@@ -22,11 +22,13 @@ class LidarFeeder {
   // the same samples' jump-free poses T_O_I (vio/vio.h), which dewarp the sweeps, or nullptr; imu_tilt_sigma_rad:
   // the same samples' tilt standard deviations (VioImuOutput), which weigh the tilt priors, or nullptr.
   // results: every sweep mapped; rejected: every sweep the mapper rejected (lidar/mapping_loss.h), which neither
-  // the results nor loop closure see. loop: the loop closure module, or nullptr.
+  // the results nor loop closure see. loop: the loop closure module, or nullptr. reanchor_when_lost: when the
+  // mapper rejects loss.lost_after_rejected sweeps in a row it starts a fresh local map at the next sweep's
+  // predicted pose and maps on (status "reanchored"); false: it is lost and maps nothing more (the run resets).
   LidarFeeder(const lidar::LidarMapperConfig& config, const RigCalibration& calib, const Trajectory* imu_poses,
               const Trajectory* imu_motion, const std::vector<double>* imu_tilt_sigma_rad,
               std::vector<lidar::LidarMappingResult>* results, std::vector<lidar::LidarMappingResult>* rejected,
-              LoopClosureModule* loop = nullptr);
+              LoopClosureModule* loop = nullptr, bool reanchor_when_lost = false);
 
   void scan(LidarScan scan);
   // Maps the waiting sweeps that the IMU-rate poses now cover.
@@ -78,6 +80,7 @@ class LidarFeeder {
   std::vector<lidar::LidarMappingResult>* rejected_;
   LoopClosureModule* loop_;
   int lost_after_rejected_;
+  bool reanchor_when_lost_;
   int rejected_in_a_row_ = 0;
   std::optional<TimeNs> mapper_lost_t_ns_;
   std::deque<LidarScan> waiting_;

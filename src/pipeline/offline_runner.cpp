@@ -127,7 +127,7 @@ OfflineRunResult run_offline(DatasetReader& reader, const OfflineRunConfig& conf
   std::vector<TimeNs> resets_ns;
   for (double reset_s : config.reset_at_s) resets_ns.push_back(summary.start_t_ns + s_to_ns(reset_s));
   // Resets decided by the run (config.reset_on_lidar_lost): checked every reset_check_s of data.
-  const bool reset_on_lost = config.reset_on_lidar_lost && config.mode == RunMode::kVil && config.loop.enabled;
+  const bool reset_on_lost = resets_on_lidar_lost(config);
   const TimeNs check_period_ns = std::max<TimeNs>(1, s_to_ns(config.reset_check_s));
   RunSegments segments(calib, config, summary.start_t_ns);
   auto system = std::make_unique<System>(calib, config, callbacks);

@@ -54,6 +54,12 @@ struct OfflineRunConfig {
   RealtimeConfig realtime;  // speed 0: offline (deterministic); > 0: events on the wall clock (pipeline/realtime.h)
 };
 
+// The run resets the whole state when LiDAR mapping is lost (vil with loop closure and reset_on_lidar_lost);
+// otherwise LiDAR mapping re-anchors itself (pipeline/lidar_feeder.h).
+inline bool resets_on_lidar_lost(const OfflineRunConfig& c) {
+  return c.reset_on_lidar_lost && c.mode == RunMode::kVil && c.loop.enabled;
+}
+
 // The most messages that waited at once in each module's queue (0 for a module the mode does not run).
 struct QueueDepths {
   std::size_t frontend = 0;

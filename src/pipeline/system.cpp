@@ -78,7 +78,7 @@ class LidarSide {
     }
     lidar_.emplace(config.lidar, calib, with_vio ? &imu_poses_ : nullptr, with_vio ? &imu_motion_ : nullptr,
                    with_vio ? &imu_tilt_sigma_rad_ : nullptr, &result->lidar, &result->lidar_rejected,
-                   loop_ ? &*loop_ : nullptr);
+                   loop_ ? &*loop_ : nullptr, !resets_on_lidar_lost(config));
   }
 
   void handle(LidarMessage&& message) {
