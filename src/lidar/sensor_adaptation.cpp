@@ -13,7 +13,7 @@ void unless_set(T& field, const T& built_in, const T& value) {
 
 LidarMapperConfig adapt_to_sensor(const LidarMapperConfig& given, const SensorTraits& traits) {
   LidarMapperConfig c = given;
-  if (traits.spinning()) return c;
+  if (!traits.read() || traits.spinning()) return c;
   const LidarMapperConfig d;
   // No rings: features from point neighbourhoods, every point a candidate, surfaces only (edges add about 2 mm a
   // sweep along a corridor's creases), three times the surfaces per cell (docs/lidar.md, "More neighbourhood

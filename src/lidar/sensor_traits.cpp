@@ -13,7 +13,6 @@ namespace vilslam::lidar {
 namespace {
 
 constexpr double kMinTraitRange_m = 1.0;  // nearer returns: the robot itself, mixed pixels
-constexpr std::size_t kMinTraitPoints = 100;
 // Rings are told from the elevations of returns beyond this range: a laser's offset from the sensor's origin
 // (a few cm) spreads its elevation by offset / range, about 0.3 deg at 5 m.
 constexpr double kRingRange_m = 5.0;
@@ -34,7 +33,7 @@ double quantile(std::vector<double> values, double q) {
 // Laser rings in a histogram of elevations: the fewest bins holding the dense share of the returns, grouped into
 // runs of adjacent bins, one run per laser. 0 when those bins fill more than kMaxRingFill of the span.
 int rings_in(const std::vector<double>& elevations_deg, double min_elevation_deg, double max_elevation_deg) {
-  if (elevations_deg.size() < kMinTraitPoints) return 0;
+  if (elevations_deg.size() < SensorTraits::kMinPoints) return 0;
   const int bins = static_cast<int>(std::ceil((max_elevation_deg - min_elevation_deg) / kElevationBinDeg)) + 1;
   std::vector<std::size_t> count(static_cast<std::size_t>(bins), 0);
   std::size_t in_span = 0;
@@ -83,12 +82,11 @@ SensorTraits read_sensor_traits(const LidarScan& sweep) {
     sector[static_cast<std::size_t>(std::min(359.0, std::floor(azimuth_deg)))] = true;
     max_ring = std::max(max_ring, static_cast<int>(p.ring));
   }
-  if (ranges.size() < kMinTraitPoints) {
-    throw InputError("lidar sweep at t_ns " + std::to_string(sweep.t_ns),
-                     std::to_string(ranges.size()) + " returns beyond " + std::to_string(kMinTraitRange_m) +
-                         " m: too few to read the sensor's traits");
-  }
   t.points = ranges.size();
+  if (!t.read()) {
+    t.rings = t.ring_field ? max_ring + 1 : 0;
+    return t;
+  }
   t.min_elevation_deg = quantile(elevations_deg, 0.005);
   t.max_elevation_deg = quantile(elevations_deg, 0.995);
   t.azimuth_coverage = static_cast<double>(std::count(sector.begin(), sector.end(), true)) / 360.0;
@@ -101,17 +99,15 @@ SensorTraits read_sensor_traits(const LidarScan& sweep) {
 }
 
 SensorTraits first_sweep_traits(const DatasetIndex& index) {
-  for (std::size_t i = 0; i < index.scans.size(); ++i) {
-    try {
-      return read_sensor_traits(load_scan(index, i));
-    } catch (const InputError&) {
-      continue;  // too few returns
-    }
-  }
-  throw InputError(index.summary.path, "no LiDAR sweep has enough returns to read the sensor's traits");
+  if (index.scans.empty()) throw InputError(index.summary.path, "no LiDAR sweep to read the sensor's traits from");
+  return read_sensor_traits(load_scan(index, 0));
 }
 
 std::string sensor_traits_text(const SensorTraits& t) {
+  if (!t.read()) {
+    return "lidar_points: " + std::to_string(t.points) + " (too few to read the sensor's traits)\nlidar_ring_field: " +
+           (t.ring_field ? "yes" : "no") + "\nlidar_point_times: " + (t.point_times ? "yes" : "no") + "\n";
+  }
   char text[640];
   std::snprintf(text, sizeof text,
                 "lidar_points: %zu\nlidar_ring_field: %s\nlidar_rings: %d (%s)\nlidar_point_times: %s\n"

@@ -11,7 +11,8 @@
 namespace vilslam::lidar {
 
 struct SensorTraits {
-  std::size_t points = 0;      // returns in the sweep, at a finite range above kMinTraitRange_m
+  static constexpr std::size_t kMinPoints = 100;  // fewer returns tell nothing: the traits are not read
+  std::size_t points = 0;      // returns in the sweep, at a finite range of at least 1 m
   bool ring_field = false;     // the source named each point's laser
   bool point_times = false;    // the source gave each point its own time
   int rings = 0;               // laser rings seen in the elevations (the ring field's count when given); 0: none
@@ -26,13 +27,15 @@ struct SensorTraits {
   // A spinning head sweeps its azimuth in time, so a point's azimuth gives its time when the source gave none
   // (lidar/azimuth_times.h); a non-repetitive pattern gives no such clock.
   bool spinning() const { return ring_field || rings > 0; }
+  // Enough returns to tell anything (a sweep of a test rig may have a dozen): otherwise nothing adapts to them.
+  bool read() const { return points >= kMinPoints; }
 };
 
-// The traits of one sweep. Throws InputError when it has fewer than kMinTraitPoints usable returns.
+// The traits of one sweep (SensorTraits::read() false when it has too few returns).
 SensorTraits read_sensor_traits(const LidarScan& sweep);
 
-// The traits of a dataset's first sweep with enough returns, as a run reads them (pipeline/lidar_feeder.h: it
-// leaves sweeps with too few returns unmapped). Throws InputError naming the dataset when no sweep has enough.
+// The traits of a dataset's first sweep, as a run reads them (pipeline/lidar_feeder.h). Throws InputError naming
+// the dataset when it has no sweep.
 SensorTraits first_sweep_traits(const DatasetIndex& index);
 
 // One line per trait, "name: value", as `vilslam info` prints them.

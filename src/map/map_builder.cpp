@@ -127,7 +127,7 @@ MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory
     }
     LidarScan scan = load_scan(index, i);
     scan.t_ns += offset_ns;
-    if (config.dewarp && config.azimuth_times) {
+    if (config.dewarp && config.azimuth_times && traits.read()) {
       lidar::fill_missing_point_times(scan, traits, index.calibration.lidar.rate_hz);  // as the run did
     }
     if (scan.points.empty() || !covers(T_W_L, scan.t_ns, scan.end_t_ns(), max_gap_ns) ||

@@ -20,36 +20,30 @@ LidarFeeder::LidarFeeder(const lidar::LidarMapperConfig& config, const RigCalibr
       imu_tilt_sigma_rad_(imu_tilt_sigma_rad), results_(results), rejected_(rejected), loop_(loop),
       lost_after_rejected_(config.loss.lost_after_rejected), reanchor_when_lost_(reanchor_when_lost) {}
 
-bool LidarFeeder::know_sensor(const LidarScan& scan) {
-  if (traits_) return true;
-  try {
-    traits_ = lidar::read_sensor_traits(scan);
-  } catch (const InputError& e) {
-    spdlog::warn("{}", e.what());
-    return false;
-  }
-  mapper_.emplace(lidar::adapt_to_sensor(config_, *traits_), T_I_L_, s_to_ns(1.0 / rate_hz_), traits_->spinning());
-  return true;
+void LidarFeeder::know_sensor(const LidarScan& scan) {
+  if (traits_) return;
+  traits_ = lidar::read_sensor_traits(scan);
+  if (!traits_->read()) spdlog::warn("the first LiDAR sweep has {} returns: too few to read the sensor from", traits_->points);
+  mapper_.emplace(lidar::adapt_to_sensor(config_, *traits_), T_I_L_, s_to_ns(1.0 / rate_hz_),
+                  traits_->read() && traits_->spinning());
 }
 
 TimeNs LidarFeeder::latest_end_t_ns(const LidarScan& scan) const {
-  const bool may_take_azimuth_times = dewarp_ && traits_->spinning() && !lidar::has_point_times(scan);
+  const bool may_take_azimuth_times =
+      dewarp_ && traits_->read() && traits_->spinning() && !lidar::has_point_times(scan);
   return may_take_azimuth_times ? scan.t_ns + s_to_ns(1.0 / rate_hz_) : scan.end_t_ns();
 }
 
 std::string LidarFeeder::sensor_report() const {
   if (!traits_) return {};
-  const bool may_need = dewarp_ && traits_->spinning() && !traits_->point_times;
+  const bool may_need = dewarp_ && traits_->read() && traits_->spinning() && !traits_->point_times;
   return lidar::sensor_traits_text(*traits_) + "lidar_azimuth_times: " + (may_need ? mapper_->azimuth_times() : "no") +
          "\n";
 }
 
 void LidarFeeder::scan(LidarScan scan) {
   scan.t_ns += offset_ns_;
-  if (!know_sensor(scan)) {
-    ++unmapped_;
-    return;
-  }
+  know_sensor(scan);
   if (!imu_poses_) {
     map(scan, {}, {});
     return;

@@ -50,8 +50,7 @@ class LidarFeeder {
   std::size_t waiting_scans() const { return waiting_.size(); }
   // The newest mapped sweep's features as registered (lidar/lidar_mapper.h).
   const lidar::FeatureScan& last_features() const { return mapper_->last_features(); }
-  // The sensor as the run read it (lidar_sensor.txt): its traits, off the first sweep with enough returns
-  // (lidar/sensor_traits.h), and "lidar_azimuth_times: yes|no|undecided" for sweeps without point times of a
+  // The sensor as the run read it (lidar_sensor.txt): its traits, off the first sweep (lidar/sensor_traits.h), and "lidar_azimuth_times: yes|no|undecided" for sweeps without point times of a
   // spinning head (lidar_mapper.h). Empty before a sweep was read.
   std::string sensor_report() const;
 
@@ -59,9 +58,9 @@ class LidarFeeder {
   void map(const LidarScan& scan, const std::function<SE3(TimeNs)>& T_W_I_prior,
            const std::function<SE3(TimeNs)>& T_O_I_dewarp, double prior_tilt_sigma_rad = 0.0);
 
-  // Reads the sensor's traits off scan and builds the mapper for them, once; false while no sweep had enough
-  // returns (such a sweep is left unmapped).
-  bool know_sensor(const LidarScan& scan);
+  // Reads the sensor's traits off the first sweep and builds the mapper for them (with too few returns to read
+  // them: the config as given).
+  void know_sensor(const LidarScan& scan);
 
   // The end of scan's sweep, or where it ends once the mapper gives it azimuth times (lidar_mapper.h).
   TimeNs latest_end_t_ns(const LidarScan& scan) const;

@@ -1,6 +1,5 @@
 #include <gtest/gtest.h>
 
-#include "common/error.h"
 #include "lidar/model_deviation.h"
 #include "lidar/sensor_adaptation.h"
 #include "lidar/sensor_traits.h"
@@ -41,11 +40,18 @@ TEST(SensorTraits, ANonRepetitivePatternHasNoRings) {
   EXPECT_NE(sensor_traits_text(t).find("lidar_rings: 0 (none: a non-repetitive pattern)"), std::string::npos);
 }
 
-TEST(SensorTraits, TooFewReturnsIsAnError) {
+TEST(SensorTraits, TooFewReturnsLeaveThemUnreadAndNothingAdapts) {
   LidarScan sparse;
+  sparse.has_ring = false;
   sparse.points.resize(50);
   for (LidarPoint& p : sparse.points) p.x = 5.0f;
-  EXPECT_THROW(read_sensor_traits(sparse), InputError);
+  const SensorTraits t = read_sensor_traits(sparse);
+  EXPECT_FALSE(t.read());
+  EXPECT_EQ(t.points, 50u);
+  EXPECT_FALSE(t.spinning());
+  EXPECT_NE(sensor_traits_text(t).find("too few to read"), std::string::npos);
+  const LidarMapperConfig kept = adapt_to_sensor(LidarMapperConfig{}, t);
+  EXPECT_EQ(kept.lidar.features.method, FeatureMethod::kAuto);  // not taken for a non-repetitive sensor
 }
 
 TEST(SensorAdaptation, ANonRepetitiveSensorGetsNeighbourhoodFeaturesUnlessTheUserChose) {
