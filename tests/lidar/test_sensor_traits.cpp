@@ -56,6 +56,7 @@ TEST(SensorTraits, TooFewReturnsLeaveThemUnreadAndNothingAdapts) {
 
 TEST(SensorAdaptation, ANonRepetitiveSensorGetsNeighbourhoodFeaturesUnlessTheUserChose) {
   SensorTraits non_repetitive;
+  non_repetitive.points = 20000;  // read, no rings
   LidarMapperConfig given;
   given.lidar.registration.source_surface_leaf_m = 0.3;  // the user's own value
   const LidarMapperConfig c = adapt_to_sensor(given, non_repetitive);
@@ -65,7 +66,7 @@ TEST(SensorAdaptation, ANonRepetitiveSensorGetsNeighbourhoodFeaturesUnlessTheUse
   EXPECT_EQ(c.lidar.registration.tilt_prior_sigma_rad, 0.0);
   EXPECT_EQ(c.lidar.registration.source_surface_leaf_m, 0.3);
 
-  SensorTraits spinning;
+  SensorTraits spinning = non_repetitive;
   spinning.rings = 16;
   const LidarMapperConfig kept = adapt_to_sensor(given, spinning);
   EXPECT_EQ(kept.lidar.features.method, FeatureMethod::kAuto);
