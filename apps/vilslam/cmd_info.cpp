@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "common/json_writer.h"
 #include "io/calibration_io.h"
@@ -54,7 +55,7 @@ void print(const DatasetIndex& index, const std::vector<std::string>& sensor_nam
 }
 
 void write_json(const std::string& path, const DatasetIndex& index, const std::vector<std::string>& sensor_names,
-                double duration_s) {
+                double duration_s, const std::optional<lidar::SensorTraits>& traits) {
   const DatasetSummary& s = index.summary;
   JsonWriter json;
   json.begin_object();
@@ -80,6 +81,22 @@ void write_json(const std::string& path, const DatasetIndex& index, const std::v
   json.key("problems").begin_array();
   for (const auto& p : s.problems) json.value(p);
   json.end_array();
+  if (traits) {  // the LiDAR as a run reads it (lidar/sensor_traits.h)
+    json.key("lidar_traits").begin_object();
+    json.key("points").value(static_cast<std::uint64_t>(traits->points));
+    json.key("read").value(traits->read());
+    json.key("ring_field").value(traits->ring_field);
+    json.key("point_times").value(traits->point_times);
+    json.key("rings").value(traits->rings);
+    json.key("min_elevation_deg").value(traits->min_elevation_deg);
+    json.key("max_elevation_deg").value(traits->max_elevation_deg);
+    json.key("azimuth_coverage").value(traits->azimuth_coverage);
+    json.key("range_p10_m").value(traits->range_p10_m);
+    json.key("range_median_m").value(traits->range_median_m);
+    json.key("range_p90_m").value(traits->range_p90_m);
+    json.key("range_max_m").value(traits->range_max_m);
+    json.end_object();
+  }
   json.end_object();
   json.save(path);
 }
@@ -97,8 +114,10 @@ vilslam::cli::Command reg("info", "Describe and validate a dataset (EuRoC ASL, v
     const std::vector<std::string> names = sensors(index);
     const double duration_s = ns_to_s(index.summary.end_t_ns - index.summary.start_t_ns);
     print(index, names, duration_s);
-    if (!index.scans.empty()) std::printf("%s", lidar::sensor_traits_text(lidar::first_sweep_traits(index)).c_str());
-    if (!opts->json_path.empty()) write_json(opts->json_path, index, names, duration_s);
+    std::optional<lidar::SensorTraits> traits;
+    if (!index.scans.empty()) traits = lidar::first_sweep_traits(index);
+    if (traits) std::printf("%s", lidar::sensor_traits_text(*traits).c_str());
+    if (!opts->json_path.empty()) write_json(opts->json_path, index, names, duration_s, traits);
     return 0;
   };
 });

@@ -48,6 +48,12 @@ TEST(RealLidarSequence, BalmMappedFromTheDataAloneAsWellAsKissIcp) {
   EXPECT_GT(traits.rings, 30);
   EXPECT_NEAR(traits.min_elevation_deg, -45.0, 2.0);
   EXPECT_NEAR(traits.max_elevation_deg, 45.0, 2.0);
+  const fs::path info_json = test::process_temp_root() / "balm_info.json";
+  const test::CliResult info = test::run_cli("info " + dir.string() + " --json " + info_json.string());
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_NE(info.output.find("lidar_rings: " + std::to_string(traits.rings) + " (a spinning head)"), std::string::npos)
+      << info.output;
+  EXPECT_NE(test::read_file_bytes(info_json).find("\"ring_field\": false"), std::string::npos);
   // Deskewed already: each sweep is taken as one instant, not given azimuth times.
   EXPECT_NE(run.output.find("each taken as one instant"), std::string::npos) << run.output;
   EXPECT_NE(test::read_file_bytes(out / "lidar_sensor.txt").find("lidar_azimuth_times: no\n"), std::string::npos);
