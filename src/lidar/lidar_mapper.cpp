@@ -84,8 +84,8 @@ void LidarMapper::vote_azimuth_clock(const LidarScan& scan, const std::vector<Ve
   assign_azimuth_times(timed, ns_to_s(sweep_period_ns_));
   const TimeNs timed_end_ns = timed.end_t_ns(), duration_ns = end_t_ns - previous_->end_t_ns;
   const Vec6 xi = motion.log();
-  const FeatureScan features = dewarp(extract_features(timed, config_.lidar.rings, features_for_registration(config_.lidar)),
-                                      timed_end_ns, constant_velocity(xi, duration_ns, timed_end_ns));
+  const FeatureScan raw = extract_features(timed, config_.lidar.rings, features_for_registration(config_.lidar));
+  const FeatureScan features = dewarp(raw, timed_end_ns, constant_velocity(xi, duration_ns, timed_end_ns));
   const SE3 T_W_L_timed = instant.T_W_L * SE3::exp(xi * (double(timed_end_ns - end_t_ns) / double(duration_ns)));
   const RegistrationResult r = register_scan(features, map_, T_W_L_timed, registration_without_prior());
   azimuth_clock_.vote(r.rms_residual_m, instant.rms_residual_m);

@@ -28,7 +28,8 @@ struct MappingStatusThresholds {
   double correction_deg = 3.0;
 };
 
-// The first that applies, in this order: rejected, reanchored, after a gap, not converged, prediction contradicted, degenerate.
+// The first that applies, in this order: rejected, reanchored, after a gap, not converged, prediction
+// contradicted, degenerate.
 MappingStatus mapping_status(const LidarMappingResult& sweep, const MappingStatusThresholds& thresholds = {});
 std::string mapping_status_name(MappingStatus status);
 

@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 
 #include "common/error.h"
 #include "lidar/azimuth_times.h"
@@ -58,7 +57,7 @@ int rings_in(const std::vector<double>& elevations_deg, double min_elevation_deg
   }
   if (static_cast<double>(dense_bins) > kMaxRingFill * bins) return 0;
   int runs = 0;
-  for (int b = 0; b < bins; ++b) runs += dense[static_cast<std::size_t>(b)] && (b == 0 || !dense[static_cast<std::size_t>(b - 1)]);
+  for (std::size_t b = 0; b < dense.size(); ++b) runs += dense[b] && (b == 0 || !dense[b - 1]);
   return runs;
 }
 
@@ -94,7 +93,8 @@ SensorTraits read_sensor_traits(const LidarScan& sweep) {
   t.range_median_m = quantile(ranges, 0.5);
   t.range_p90_m = quantile(ranges, 0.9);
   t.range_max_m = quantile(ranges, 0.995);
-  t.rings = t.ring_field ? max_ring + 1 : rings_in(far_elevations_deg, t.min_elevation_deg - 1.0, t.max_elevation_deg + 1.0);
+  t.rings = t.ring_field ? max_ring + 1
+                         : rings_in(far_elevations_deg, t.min_elevation_deg - 1.0, t.max_elevation_deg + 1.0);
   return t;
 }
 

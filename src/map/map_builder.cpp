@@ -115,7 +115,7 @@ MapBuildResult build_dense_map(const std::string& dataset_path, const Trajectory
   if (index.scans.empty()) throw InputError(dataset_path, "dataset has no LiDAR scans");
   const TimeNs offset_ns = index.calibration.lidar_time_offset_ns;
   const TimeNs max_gap_ns = s_to_ns(config.max_pose_gap_s);
-  const lidar::SensorTraits traits = lidar::first_sweep_traits(index);  // as the run read them (pipeline/lidar_feeder.h)
+  const lidar::SensorTraits traits = lidar::first_sweep_traits(index);  // as the run read them (lidar_feeder.h)
   for (std::size_t i = 0; i < index.scans.size(); ++i) {
     if (progress) progress(double(i) / index.scans.size());
     const ScanEntry& entry = index.scans[i];

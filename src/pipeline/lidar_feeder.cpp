@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "common/error.h"
 #include "common/log.h"
 #include "lidar/azimuth_times.h"
 #include "lidar/sensor_adaptation.h"
@@ -23,7 +22,9 @@ LidarFeeder::LidarFeeder(const lidar::LidarMapperConfig& config, const RigCalibr
 void LidarFeeder::know_sensor(const LidarScan& scan) {
   if (traits_) return;
   traits_ = lidar::read_sensor_traits(scan);
-  if (!traits_->read()) spdlog::warn("the first LiDAR sweep has {} returns: too few to read the sensor from", traits_->points);
+  if (!traits_->read()) {
+    spdlog::warn("the first LiDAR sweep has {} returns: too few to read the sensor from", traits_->points);
+  }
   mapper_.emplace(lidar::adapt_to_sensor(config_, *traits_), T_I_L_, s_to_ns(1.0 / rate_hz_),
                   traits_->read() && traits_->spinning());
 }

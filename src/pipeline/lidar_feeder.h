@@ -50,8 +50,9 @@ class LidarFeeder {
   std::size_t waiting_scans() const { return waiting_.size(); }
   // The newest mapped sweep's features as registered (lidar/lidar_mapper.h).
   const lidar::FeatureScan& last_features() const { return mapper_->last_features(); }
-  // The sensor as the run read it (lidar_sensor.txt): its traits, off the first sweep (lidar/sensor_traits.h), and "lidar_azimuth_times: yes|no|undecided" for sweeps without point times of a
-  // spinning head (lidar_mapper.h). Empty before a sweep was read.
+  // The sensor as the run read it (lidar_sensor.txt): its traits, off the first sweep (lidar/sensor_traits.h),
+  // and "lidar_azimuth_times: yes|no|undecided" for sweeps without point times of a spinning head
+  // (lidar_mapper.h). Empty before a sweep was read.
   std::string sensor_report() const;
 
  private:

@@ -4,7 +4,8 @@
 // VIO's prior put them, metres and tens of degrees off, and the rest of the run is mapped in that displaced copy.
 // With it those sweeps are rejected, the mapper is lost, the whole state is reset at the next check and the new
 // segment re-localizes in the map of the first: the loop-closed poses stay on the truth. Without resets the mapper
-// re-anchors: a fresh local map from the next sweep's predicted pose, and LiDAR poses to the end of the data. The reset's instant depends on the data only: with and without threads, the same files.
+// re-anchors: a fresh local map from the next sweep's predicted pose, and LiDAR poses to the end of the data.
+// The reset's instant depends on the data only: with and without threads, the same files.
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
