@@ -233,7 +233,8 @@ LidarMappingResult LidarMapper::process(const LidarScan& sweep, const std::funct
   }
   out.num_edge_features = static_cast<int>(features.edges.size());
   out.num_surface_features = static_cast<int>(features.surfaces.size());
-  if (previous_ && !out.reanchored) {
+  const bool vote = clock_open && azimuth_clock_.state() == AzimuthClockVote::State::kUndecided;
+  if (previous_ && !out.reanchored && (!has_prior || vote)) {  // the points only where they are used
     std::vector<Vec3> points_L;
     for (const FeaturePoint& f : features.surfaces) points_L.push_back(f.p_L);
     for (const FeaturePoint& f : features.edges) points_L.push_back(f.p_L);
@@ -241,9 +242,7 @@ LidarMappingResult LidarMapper::process(const LidarScan& sweep, const std::funct
       model_deviation_.add(points_L, (previous_->T_W_L * out.T_prev_predicted).inverse() * out.T_W_L,
                            previous_->T_W_L.inverse() * out.T_W_L);
     }
-    if (clock_open && azimuth_clock_.state() == AzimuthClockVote::State::kUndecided) {
-      vote_azimuth_clock(sweep, points_L, out);  // before the sweep enters the map it is compared with
-    }
+    if (vote) vote_azimuth_clock(sweep, points_L, out);  // before the sweep enters the map it is compared with
   }
   map_.insert(features, out.T_W_L);
   reanchored_ = false;

@@ -29,15 +29,16 @@ void LidarFeeder::know_sensor(const LidarScan& scan) {
                   traits_->read() && traits_->spinning());
 }
 
+bool LidarFeeder::azimuth_clock_possible() const { return dewarp_ && traits_->read() && traits_->spinning(); }
+
 TimeNs LidarFeeder::latest_end_t_ns(const LidarScan& scan) const {
-  const bool may_take_azimuth_times =
-      dewarp_ && traits_->read() && traits_->spinning() && !lidar::has_point_times(scan);
+  const bool may_take_azimuth_times = azimuth_clock_possible() && !lidar::has_point_times(scan);
   return may_take_azimuth_times ? scan.t_ns + s_to_ns(1.0 / rate_hz_) : scan.end_t_ns();
 }
 
 std::string LidarFeeder::sensor_report() const {
   if (!traits_) return {};
-  const bool may_need = dewarp_ && traits_->read() && traits_->spinning() && !traits_->point_times;
+  const bool may_need = azimuth_clock_possible() && !traits_->point_times;
   return lidar::sensor_traits_text(*traits_) + "lidar_azimuth_times: " + (may_need ? mapper_->azimuth_times() : "no") +
          "\n";
 }

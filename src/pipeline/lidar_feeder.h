@@ -63,6 +63,8 @@ class LidarFeeder {
   // them: the config as given).
   void know_sensor(const LidarScan& scan);
 
+  // The mapper may give sweeps without point times azimuth times (lidar_mapper.h): a spinning head, dewarping on.
+  bool azimuth_clock_possible() const;
   // The end of scan's sweep, or where it ends once the mapper gives it azimuth times (lidar_mapper.h).
   TimeNs latest_end_t_ns(const LidarScan& scan) const;
 
