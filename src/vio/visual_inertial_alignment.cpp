@@ -72,6 +72,25 @@ std::vector<Preintegration> preintegrate(const std::vector<FrontendOutput>& fram
   return out;
 }
 
+// The gyroscope bias from the visual rotations (VINS-Mono, Sec. V-B1): the rotation preintegrated from the first
+// pair to each later one, corrected to first order (Forster et al. eq. (44): dR(bg) = dR Exp(dR_dbg bg)), must
+// equal the visual one, so dR_dbg bg = log(dR^T R_0^T R_k) in the least-squares sense. Taken from the first pair
+// (not pair by pair), each visual rotation's noise weighs against the whole interval's drift. Over a 1 s window a
+// real MEMS gyro's bias (EuRoC's reach 0.08 rad/s) turns the chained rotation by more than the visual noise.
+Vec3 gyro_bias_rad_s(const std::vector<FrontendOutput>& frames, const std::vector<ImuSample>& imu,
+                     const std::vector<Mat3>& R_c_I_visual, const ImuNoise& noise) {
+  Mat3 JtJ = Mat3::Zero();
+  Vec3 Jtr = Vec3::Zero();
+  for (std::size_t k = 1; k < frames.size(); ++k) {
+    Preintegration pre(Vec3::Zero(), Vec3::Zero(), noise);
+    integrate_samples(imu, frames[0].t_ns, frames[k].t_ns, pre);
+    const Mat3 R_visual = R_c_I_visual[0].transpose() * R_c_I_visual[k];
+    JtJ += pre.dR_dbg().transpose() * pre.dR_dbg();
+    Jtr += pre.dR_dbg().transpose() * so3::log(Mat3(pre.delta_R().transpose() * R_visual));
+  }
+  return JtJ.ldlt().solve(Jtr);
+}
+
 // Velocities v_k (and, unless g_c is given, gravity) in c, from the kinematics of each interval (Forster et al.
 // eq. (33) with R_k, p_k known): v_k dt + g dt^2 / 2 = p_k+1 - p_k - R_k dp_k and v_k+1 - v_k - g dt = R_k dv_k.
 Eigen::VectorXd solve_velocities(const std::vector<Mat3>& R_c_I, const std::vector<Vec3>& p_c_I,
@@ -113,16 +132,22 @@ VisualInertialAlignment align_visual_inertial(const std::vector<FrontendOutput>&
   }
   const std::vector<SE3> T_c_C0 = visual_motion(frames, calib, focal_px, config.min_pnp_inliers, &out.failure);
   if (T_c_C0.empty()) return out;
-  // Positions from vision; rotations from the gyroscope (over a second its drift is far below the rotation noise
-  // of frame-to-frame PnP on stereo depth), the visual ones only checking them.
-  const std::vector<Preintegration> pre = preintegrate(frames, imu, Vec3::Zero(), calib.imu);
-  std::vector<Mat3> R_c_I(n);
+  // Positions from vision; rotations from the gyroscope, its bias calibrated on the visual ones (over a second the
+  // gyroscope's drift is then far below the rotation noise of frame-to-frame PnP on stereo depth), the visual ones
+  // then only checking them.
+  std::vector<Mat3> R_c_I_visual(n);
   std::vector<Vec3> p_c_I(n);
   for (std::size_t k = 0; k < n; ++k) {
     const SE3 T_c_I = T_c_C0[k] * calib.T_I_C0.inverse();
-    R_c_I[k] = k == 0 ? T_c_I.rotation() : Mat3(R_c_I[k - 1] * pre[k - 1].delta_R());
+    R_c_I_visual[k] = T_c_I.rotation();
     p_c_I[k] = T_c_I.translation();
-    const Vec3 mismatch = so3::log(Mat3(R_c_I[k].transpose() * T_c_I.rotation()));
+  }
+  const Vec3 bias_gyro_rad_s = gyro_bias_rad_s(frames, imu, R_c_I_visual, calib.imu);
+  const std::vector<Preintegration> pre = preintegrate(frames, imu, bias_gyro_rad_s, calib.imu);
+  std::vector<Mat3> R_c_I(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    R_c_I[k] = k == 0 ? R_c_I_visual[0] : Mat3(R_c_I[k - 1] * pre[k - 1].delta_R());
+    const Vec3 mismatch = so3::log(Mat3(R_c_I[k].transpose() * R_c_I_visual[k]));
     if (!(mismatch.norm() <= config.max_rotation_mismatch_rad)) {
       out.failure = "the visual and the gyroscope rotation disagree by " + std::to_string(mismatch.norm()) +
                     " rad at pair " + std::to_string(k);
@@ -145,6 +170,7 @@ VisualInertialAlignment align_visual_inertial(const std::vector<FrontendOutput>&
   x.t_ns = frames[0].t_ns;
   x.R_W_I = R_W_c * R_c_I[0];
   x.v_W_m_s = R_W_c * v_c.head<3>();
+  x.bias_gyro_rad_s = bias_gyro_rad_s;
   out.state = x;
   return out;
 }

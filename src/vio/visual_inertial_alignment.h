@@ -5,7 +5,8 @@
 // gives the velocity at every pair and gravity in the first camera's frame (VINS-Mono's visual-inertial alignment,
 // Qin et al. 2018, Sec. V-B, with the scale known from the stereo baseline), and gravity's direction gives roll
 // and pitch. The accelerometer alone cannot: while the robot accelerates or turns, its mean is not gravity.
-// The biases start at 0 (the smoother's priors hold them); over the window their effect is far below the noise.
+// The gyroscope bias is calibrated first, on the visual rotations (Sec. V-B1); the accelerometer bias starts at 0
+// (the smoother's prior holds it): over the window its effect is far below the noise.
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,7 +26,7 @@ struct VisualInertialAlignmentConfig {
 };
 
 struct VisualInertialAlignment {
-  std::optional<NavState> state;  // at the window's first pair (yaw 0, position 0); none when it failed
+  std::optional<NavState> state;  // at the window's first pair (yaw 0, position 0, the gyro bias); none when it failed
   std::string failure;            // why not, when it failed
 };
 
