@@ -83,7 +83,8 @@ void read_camera(const Reader& r, const YAML::Node& n, SimConfig& c) {
 
 void read_imu(const Reader& r, const YAML::Node& n, SimConfig& c) {
   r.check_keys(n, {"rate_hz", "gyro_noise_density", "gyro_random_walk", "accel_noise_density", "accel_random_walk",
-                   "add_noise", "initial_gyro_bias_sigma", "initial_accel_bias_sigma"},
+                   "add_noise", "initial_gyro_bias_sigma", "initial_accel_bias_sigma", "min_noise_factor",
+                   "max_noise_factor", "max_scale_error", "max_misalignment_deg", "max_g_sensitivity"},
                "imu");
   r.get(n, "rate_hz", c.imu.noise.rate_hz);
   r.get(n, "gyro_noise_density", c.imu.noise.gyro_noise_density);
@@ -93,6 +94,11 @@ void read_imu(const Reader& r, const YAML::Node& n, SimConfig& c) {
   r.get(n, "add_noise", c.imu.add_noise);
   r.get(n, "initial_gyro_bias_sigma", c.imu.initial_gyro_bias_sigma);
   r.get(n, "initial_accel_bias_sigma", c.imu.initial_accel_bias_sigma);
+  r.get(n, "min_noise_factor", c.imu.errors.min_noise_factor);
+  r.get(n, "max_noise_factor", c.imu.errors.max_noise_factor);
+  r.get(n, "max_scale_error", c.imu.errors.max_scale_error);
+  r.get(n, "max_misalignment_deg", c.imu.errors.max_misalignment_deg);
+  r.get(n, "max_g_sensitivity", c.imu.errors.max_g_sensitivity_rad_s_per_m_s2);
 }
 
 void read_lidar(const Reader& r, const YAML::Node& n, SimConfig& c) {
@@ -196,6 +202,10 @@ void validate(const Reader& r, const SimConfig& c) {
   if (!(e.camera_rotation_deg >= 0 && e.camera_translation_m >= 0 && e.lidar_rotation_deg >= 0 &&
         e.lidar_translation_m >= 0 && std::isfinite(e.camera_time_offset_s) && std::isfinite(e.lidar_time_offset_s)))
     r.fail("calibration_errors: angles and distances must be >= 0, offsets finite");
+  const ImuErrorRanges& imu = c.imu.errors;
+  if (!(imu.min_noise_factor > 0 && imu.min_noise_factor <= imu.max_noise_factor && std::isfinite(imu.max_noise_factor) &&
+        imu.max_scale_error >= 0 && imu.max_misalignment_deg >= 0 && imu.max_g_sensitivity_rad_s_per_m_s2 >= 0))
+    r.fail("imu: 0 < min_noise_factor <= max_noise_factor; max_scale_error, max_misalignment_deg, max_g_sensitivity >= 0");
   if (!(m.range_at_10pct_m >= 0 && m.beam_divergence_rad >= 0 && m.mixed_pixel_probability >= 0 &&
         m.mixed_pixel_probability <= 1 && m.mixed_pixel_min_jump_m >= 0))
     r.fail("lidar: range_at_10pct_m, beam_divergence_rad, mixed_pixel_min_jump_m >= 0, mixed_pixel_probability in [0, 1]");
@@ -260,6 +270,7 @@ SimConfig load_sim_config(const std::string& path) {
 
 SimConfig ideal_sensors(SimConfig config) {
   config.calibration_errors = no_calibration_errors();
+  config.imu.errors = no_imu_errors();
   config.lidar.returns = ideal_returns();
   config.render.vignetting = 0;
   return config;

@@ -41,8 +41,8 @@ struct SimConfig {
   TimeNs start_time_ns = 1'000'000'000;        // timestamp of the first sample
 
   FaultConfig faults;
-  // Sensor realism (docs/simulator.md): the LiDAR's return model, the render's vignetting and blur and the
-  // calibration errors below apply while this is on, the default (`sensor_realism: false` or `--ideal-sensors`
+  // Sensor realism (docs/simulator.md): the IMU's errors (imu.errors), the LiDAR's return model, the render's
+  // vignetting and blur and the calibration errors below apply while this is on, the default (`sensor_realism: false` or `--ideal-sensors`
   // turn it off).
   bool sensor_realism = true;
   CalibrationErrors calibration_errors;        // what the written calibration does not say
@@ -52,7 +52,7 @@ struct SimConfig {
 };
 
 // The config with ideal sensors (what the simulator renders when sensor_realism is off): no calibration
-// errors, no missed LiDAR echoes, oblique-footprint spread or mixed pixels, no vignetting. Range and pixel
+// errors, the IMU's data sheet (no axis errors, the noise as written), no missed LiDAR echoes, oblique-footprint spread or mixed pixels, no vignetting. Range and pixel
 // noise, motion blur, exposure changes and faults stay as configured.
 SimConfig ideal_sensors(SimConfig config);
 

@@ -134,6 +134,14 @@ ImuStream make_imu(const SimConfig& config, const SimulateRequest& request, Flow
     ImuSimConfig imu = config.imu;
     imu.seed = mix_seed(request.seed, 3, 0);
     ImuSimulation sim = simulate_imu(motion, imu, t0, t1);
+    const ImuNoise& sheet = config.imu.noise;
+    const ImuNoise& truth = sim.errors.noise;
+    spdlog::info("IMU against its data sheet (not in rig.yaml): noise x{:.2f} gyro, x{:.2f} accel, bias walks x{:.2f} "
+                 "gyro, x{:.2f} accel; axis errors up to {:.2f} % scale, {:.2f} deg",
+                 truth.gyro_noise_density / sheet.gyro_noise_density,
+                 truth.accel_noise_density / sheet.accel_noise_density, truth.gyro_random_walk / sheet.gyro_random_walk,
+                 truth.accel_random_walk / sheet.accel_random_walk, 100.0 * config.imu.errors.max_scale_error,
+                 config.imu.errors.max_misalignment_deg);
     out.samples = std::move(sim.samples);
     out.groundtruth = std::move(sim.groundtruth);
   } else {

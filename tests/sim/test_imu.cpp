@@ -78,7 +78,7 @@ TEST(ImuSim, IdealImuAtRestMeasuresGravityOnly) {
   EXPECT_LT((rest.T_W_I.quat() * m.accel_m_s2 - Vec3(0, 0, 9.81)).norm(), 1e-12);
 }
 
-TEST(ImuSim, NoiseMatchesDensitiesAndIsSeeded) {
+TEST(ImuSim, NoiseMatchesTheDrawnDensitiesAndIsSeeded) {
   const RouteMotion motion(square_route(), RouteMotionConfig{});
   ImuSimConfig config;
   config.seed = 7;
@@ -87,17 +87,27 @@ TEST(ImuSim, NoiseMatchesDensitiesAndIsSeeded) {
   const ImuSimulation a = simulate_imu(motion, config, motion.start_ns(), t1);
   ASSERT_EQ(a.samples.size(), 12001u);
   EXPECT_EQ(a.samples[1].t_ns - a.samples[0].t_ns, 2'500'000);
-  // Residual after removing truth and the known bias is the white noise: std = density * sqrt(rate).
+  // The true noise is the data sheet's times factors in [0.5, 3], not the data sheet's.
+  const ImuNoise& truth = a.errors.noise;
+  for (const double factor : {truth.gyro_noise_density / config.noise.gyro_noise_density,
+                              truth.accel_noise_density / config.noise.accel_noise_density,
+                              truth.gyro_random_walk / config.noise.gyro_random_walk,
+                              truth.accel_random_walk / config.noise.accel_random_walk}) {
+    EXPECT_GE(factor, 0.5);
+    EXPECT_LE(factor, 3.0);
+    EXPECT_NE(factor, 1.0);
+  }
+  // Residual after removing the truth through the drawn axis errors and the known bias is the white noise:
+  // std = true density * sqrt(rate).
   double gyro_sq = 0, accel_sq = 0;
   for (std::size_t k = 0; k < a.samples.size(); ++k) {
-    const ImuSample ideal = ideal_imu(motion.state(a.samples[k].t_ns));
+    const ImuSample ideal = apply_axis_errors(a.errors, ideal_imu(motion.state(a.samples[k].t_ns)));
     gyro_sq += (a.samples[k].gyro_rad_s - ideal.gyro_rad_s - a.groundtruth[k].bias_gyro_rad_s).squaredNorm();
     accel_sq += (a.samples[k].accel_m_s2 - ideal.accel_m_s2 - a.groundtruth[k].bias_accel_m_s2).squaredNorm();
   }
   const double n = 3.0 * a.samples.size();
-  EXPECT_NEAR(std::sqrt(gyro_sq / n), config.noise.gyro_noise_density * 20, 0.03 * config.noise.gyro_noise_density * 20);
-  EXPECT_NEAR(std::sqrt(accel_sq / n), config.noise.accel_noise_density * 20,
-              0.03 * config.noise.accel_noise_density * 20);
+  EXPECT_NEAR(std::sqrt(gyro_sq / n), truth.gyro_noise_density * 20, 0.03 * truth.gyro_noise_density * 20);
+  EXPECT_NEAR(std::sqrt(accel_sq / n), truth.accel_noise_density * 20, 0.03 * truth.accel_noise_density * 20);
   // Biases walk: they change over the sequence.
   EXPECT_GT((a.groundtruth.back().bias_accel_m_s2 - a.groundtruth.front().bias_accel_m_s2).norm(), 1e-3);
 
@@ -106,6 +116,41 @@ TEST(ImuSim, NoiseMatchesDensitiesAndIsSeeded) {
   config.seed = 8;
   const ImuSimulation other = simulate_imu(motion, config, motion.start_ns(), t1);
   EXPECT_NE(other.samples.back().accel_m_s2, a.samples.back().accel_m_s2);
+  EXPECT_NE(other.errors.noise.gyro_noise_density, truth.gyro_noise_density);
+}
+
+// The axis errors stay within their ranges; none drawn, the data sheet's IMU measures exactly.
+TEST(ImuErrors, DrawnWithinTheirRangesAndNoneForTheDataSheet) {
+  const ImuNoise sheet;
+  const ImuErrorRanges ranges;
+  for (std::uint64_t seed = 0; seed < 50; ++seed) {
+    const ImuErrors e = draw_imu_errors(sheet, ranges, seed);
+    for (const Mat3* axes : {&e.gyro_axes, &e.accel_axes}) {
+      for (int i = 0; i < 3; ++i) {
+        EXPECT_LE(std::abs((*axes)(i, i) - 1.0), ranges.max_scale_error);
+        const Vec3 direction = axes->row(i).transpose().normalized();
+        EXPECT_LE(std::acos(std::min(1.0, direction(i))) * 180.0 / M_PI, 1.01 * ranges.max_misalignment_deg);  // 1 + scale
+      }
+    }
+    EXPECT_LE(e.g_sensitivity.cwiseAbs().maxCoeff(), ranges.max_g_sensitivity_rad_s_per_m_s2);
+  }
+  const ImuErrors a = draw_imu_errors(sheet, ranges, 3), b = draw_imu_errors(sheet, ranges, 3);
+  EXPECT_EQ(a.gyro_axes, b.gyro_axes);
+  EXPECT_NE(a.gyro_axes, draw_imu_errors(sheet, ranges, 4).gyro_axes);
+
+  const ImuErrors none = draw_imu_errors(sheet, no_imu_errors(), 3);
+  EXPECT_EQ(none.noise.gyro_noise_density, sheet.gyro_noise_density);
+  EXPECT_EQ(none.noise.accel_random_walk, sheet.accel_random_walk);
+  ImuSample s;
+  s.gyro_rad_s = Vec3(0.3, -1.2, 2.5);
+  s.accel_m_s2 = Vec3(-0.4, 9.7, 1.1);
+  const ImuSample m = apply_axis_errors(none, s);
+  EXPECT_EQ(m.gyro_rad_s, s.gyro_rad_s);  // bit for bit: an ideal dataset is the one of before
+  EXPECT_EQ(m.accel_m_s2, s.accel_m_s2);
+  // With errors: a rate about x reads on y and z (misalignment) and an acceleration turns the gyro (g-sensitivity).
+  const ImuSample r = apply_axis_errors(a, s);
+  EXPECT_NE(r.gyro_rad_s, s.gyro_rad_s);
+  EXPECT_LT((r.gyro_rad_s - s.gyro_rad_s).norm(), 0.01 * s.gyro_rad_s.norm() + 0.01);
 }
 
 }  // namespace
