@@ -19,8 +19,8 @@ RunCoverage run_coverage(const OfflineRunResult& r) {
   for (const lidar::LidarMappingResult& m : r.lidar) {
     t_ns.push_back(m.t_ns);
     const lidar::MappingStatus status = lidar::mapping_status(m);
-    tracking.push_back(status != lidar::MappingStatus::kNotConverged && status != lidar::MappingStatus::kAfterGap &&
-                       status != lidar::MappingStatus::kReanchored);
+    // Continuous with the poses before (a registration at its iteration limit still follows the motion).
+    tracking.push_back(status != lidar::MappingStatus::kAfterGap && status != lidar::MappingStatus::kReanchored);
   }
   if (!t_ns.empty()) c.lidar = coverage_of(t_ns, tracking, r.data_s);
   return c;

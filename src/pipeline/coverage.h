@@ -11,7 +11,7 @@ namespace vilslam {
 
 struct RunCoverage {
   std::optional<Coverage> vio;    // camera-rate states (vio_status.csv): tracking = "tracking"
-  std::optional<Coverage> lidar;  // mapped sweeps (lidar_status.csv): tracking = registered, converged, not after a gap
+  std::optional<Coverage> lidar;  // mapped sweeps (lidar_status.csv): tracking = registered, not after a gap or re-anchored
 };
 
 // Of the run's modules that ran, over its data span (r.data_s).
