@@ -101,12 +101,16 @@ void print_summary(const OfflineRunResult& r, TimeNs start_t_ns) {
               r.lidar_rejected.size(), r.unmapped_scans);
   std::printf("lidar mapping ms: median %.2f p95 %.2f max %.2f\n", li.median_ms, li.p95_ms, li.max_ms);
   if (!r.loop) return;
-  std::size_t accepted = 0;
-  for (const loop::LoopCandidateRecord& c : r.loop->candidates) accepted += c.accepted() ? 1 : 0;
+  std::size_t accepted = 0, untrusted = 0;
+  for (const loop::LoopCandidateRecord& c : r.loop->candidates) {
+    accepted += c.accepted() ? 1 : 0;
+    untrusted += c.rejected_as_untrusted() ? 1 : 0;
+  }
   const TimingSummary de = summarize_timings(r.loop->detection_ms);
   const TimingSummary co = summarize_timings(r.loop->correction_ms);
-  std::printf("key frames %zu, loop candidates %zu, loops accepted %zu\n", r.loop->key_frames,
-              r.loop->candidates.size(), accepted);
+  std::printf("key frames %zu, loop candidates %zu, loops accepted %zu, rejected as untrusted %zu (images matched, "
+              "geometry not: loop_candidates.csv)\n",
+              r.loop->key_frames, r.loop->candidates.size(), accepted, untrusted);
   std::printf("loop detection + constraints ms: median %.2f p95 %.2f max %.2f; correction ms: median %.2f max %.2f\n",
               de.median_ms, de.p95_ms, de.max_ms, co.median_ms, co.max_ms);
   for (const double ms : r.loop->final_solve_ms) std::printf("final solve with the tilt factors ms: %.2f\n", ms);

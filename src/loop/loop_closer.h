@@ -138,6 +138,12 @@ struct LoopCandidateRecord {
   std::string rejected_by;
 
   bool accepted() const { return rejected_by.empty(); }
+  // Its images matched (descriptors and EPnP passed) but its geometry could not be trusted: rejected by the ICP's
+  // fit, a degenerate ICP, EPnP and ICP disagreeing or the odometry contradicting it (issue 61: a loop that cannot be
+  // trusted is rejected, and counted in the run's summary).
+  bool rejected_as_untrusted() const {
+    return !accepted() && rejected_by != "bow_score" && rejected_by != "descriptor_matches" && rejected_by != "pnp_inliers";
+  }
 };
 
 class LoopCloser {

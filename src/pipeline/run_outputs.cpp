@@ -96,6 +96,9 @@ std::string timings_json(RunMode mode, const OfflineRunResult& r, const std::vec
     const auto accepted = std::count_if(r.loop->candidates.begin(), r.loop->candidates.end(),
                                         [](const loop::LoopCandidateRecord& c) { return c.accepted(); });
     json.key("loops_accepted").value(static_cast<std::uint64_t>(accepted));
+    const auto untrusted = std::count_if(r.loop->candidates.begin(), r.loop->candidates.end(),
+                                         [](const loop::LoopCandidateRecord& c) { return c.rejected_as_untrusted(); });
+    json.key("loops_rejected").value(static_cast<std::uint64_t>(untrusted));
     write_timings(json, series, "loop");
   }
   if (r.realtime) {

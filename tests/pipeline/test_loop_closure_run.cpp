@@ -140,7 +140,15 @@ TEST_F(LoopClosureRun, OutputsAgree) {
   for (std::size_t at = candidates.find(",accepted\n"); at != std::string::npos; at = candidates.find(",accepted\n", at + 1))
     ++accepted;
   EXPECT_EQ(accepted, loop::read_loop_rows((*runs_ / "a" / "loops.csv").string()).size());
-  EXPECT_NE(test::read_file_bytes(*runs_ / "a" / "timings.json").find("\"loops_accepted\""), std::string::npos);
+  const std::string timings = test::read_file_bytes(*runs_ / "a" / "timings.json");
+  EXPECT_NE(timings.find("\"loops_accepted\": " + std::to_string(accepted)), std::string::npos) << timings;
+  // Rejected as untrusted: the candidates whose images matched and whose geometry failed a check.
+  std::size_t untrusted = 0;
+  for (const char* stage : {",icp_fitness\n", ",icp_degenerate\n", ",epnp_icp_disagree\n", ",odometry_disagree\n"}) {
+    for (std::size_t at = candidates.find(stage); at != std::string::npos; at = candidates.find(stage, at + 1)) ++untrusted;
+  }
+  EXPECT_NE(timings.find("\"loops_rejected\": " + std::to_string(untrusted)), std::string::npos) << timings;
+  EXPECT_NE(output_a_->find("rejected as untrusted " + std::to_string(untrusted) + " "), std::string::npos) << *output_a_;
   // The final solve with the tilt factors (tilt_final_only, the default) is timed once, after the loops.
   EXPECT_EQ(timed_events("a", "loop_final_solve"), 1.0);
   EXPECT_NE(output_a_->find("final solve with the tilt factors ms: "), std::string::npos) << *output_a_;
