@@ -26,10 +26,20 @@ SE3 perturbed(const SE3& T_I_S, double rotation_deg, double translation_m, Rng& 
   return SE3(so3::exp(rotation_deg * kDegToRad * axis) * T_I_S.rotation(), T_I_S.translation() + translation_m * direction);
 }
 
+// Each of fx, fy, cx, cy off by a draw uniform in +-px (drawn either way).
+CameraIntrinsics perturbed(const CameraIntrinsics& nominal, double px, Rng& rng) {
+  CameraIntrinsics c = nominal;
+  for (double* v : {&c.fx, &c.fy, &c.cx, &c.cy}) {
+    const double d = rng.uniform(-px, px);
+    if (px > 0) *v += d;
+  }
+  return c;
+}
+
 }  // namespace
 
 CalibrationErrors no_calibration_errors() {
-  return CalibrationErrors{0, 0, 0, 0, 0, 0};
+  return CalibrationErrors{0, 0, 0, 0, 0, 0, 0, 0};
 }
 
 SensorMounts true_mounts(const RigCalibration& nominal, const CalibrationErrors& errors, std::uint64_t seed) {
@@ -41,6 +51,13 @@ SensorMounts true_mounts(const RigCalibration& nominal, const CalibrationErrors&
   m.T_I_C1 = m.T_I_C0 * T_C0_C1;
   if (errors.camera_rotation_deg == 0 && errors.camera_translation_m == 0) m.T_I_C1 = nominal.T_I_C1;
   m.T_I_L = perturbed(nominal.T_I_L, errors.lidar_rotation_deg, errors.lidar_translation_m, rng);
+  const Vec3 stereo_axis = unit_direction(rng);
+  if (errors.stereo_rotation_deg != 0) {
+    const SE3 T_C1_C1true(so3::exp(errors.stereo_rotation_deg * kDegToRad * stereo_axis), Vec3::Zero());
+    m.T_I_C1 = m.T_I_C1 * T_C1_C1true;
+  }
+  m.cam0 = perturbed(nominal.cam0, errors.intrinsics_px, rng);
+  m.cam1 = perturbed(nominal.cam1, errors.intrinsics_px, rng);
   m.camera_offset_ns = s_to_ns(errors.camera_time_offset_s);
   m.lidar_offset_ns = s_to_ns(errors.lidar_time_offset_s);
   return m;

@@ -175,7 +175,7 @@ void read_faults(const Reader& r, const YAML::Node& n, SimConfig& c) {
 
 void read_calibration_errors(const Reader& r, const YAML::Node& n, SimConfig& c) {
   r.check_keys(n, {"camera_rotation_deg", "camera_translation_m", "lidar_rotation_deg", "lidar_translation_m",
-                   "camera_time_offset_s", "lidar_time_offset_s"},
+                   "camera_time_offset_s", "lidar_time_offset_s", "stereo_rotation_deg", "intrinsics_px"},
                "calibration_errors");
   CalibrationErrors& e = c.calibration_errors;
   r.get(n, "camera_rotation_deg", e.camera_rotation_deg);
@@ -184,6 +184,8 @@ void read_calibration_errors(const Reader& r, const YAML::Node& n, SimConfig& c)
   r.get(n, "lidar_translation_m", e.lidar_translation_m);
   r.get(n, "camera_time_offset_s", e.camera_time_offset_s);
   r.get(n, "lidar_time_offset_s", e.lidar_time_offset_s);
+  r.get(n, "stereo_rotation_deg", e.stereo_rotation_deg);
+  r.get(n, "intrinsics_px", e.intrinsics_px);
 }
 
 void validate(const Reader& r, const SimConfig& c) {
@@ -200,7 +202,8 @@ void validate(const Reader& r, const SimConfig& c) {
   const LidarReturnModel& m = c.lidar.returns;
   if (!(c.render.vignetting >= 0 && c.render.vignetting <= 1)) r.fail("render.vignetting must be in [0, 1]");
   if (!(e.camera_rotation_deg >= 0 && e.camera_translation_m >= 0 && e.lidar_rotation_deg >= 0 &&
-        e.lidar_translation_m >= 0 && std::isfinite(e.camera_time_offset_s) && std::isfinite(e.lidar_time_offset_s)))
+        e.lidar_translation_m >= 0 && e.stereo_rotation_deg >= 0 && e.intrinsics_px >= 0 &&
+        std::isfinite(e.camera_time_offset_s) && std::isfinite(e.lidar_time_offset_s)))
     r.fail("calibration_errors: angles and distances must be >= 0, offsets finite");
   const ImuErrorRanges& imu = c.imu.errors;
   if (!(imu.min_noise_factor > 0 && imu.min_noise_factor <= imu.max_noise_factor && std::isfinite(imu.max_noise_factor) &&

@@ -165,14 +165,13 @@ ImuStream make_imu(const SimConfig& config, const SimulateRequest& request, Flow
 }
 
 // Stereo frames at the camera rate over [t0, t1], rendered in parallel batches and written in order.
-void write_frames(const SimConfig& config, const SimulateRequest& request, const FlownScene& scene, const RigCalibration& calib,
-                  const SensorMounts& mounts, const ImuStream& imu, DatasetWriter& writer, SequenceReport& report,
+void write_frames(const SimConfig& config, const SimulateRequest& request, const FlownScene& scene, const SensorMounts& mounts, const ImuStream& imu, DatasetWriter& writer, SequenceReport& report,
                   const std::function<void(double)>& progress) {
   const TimeNs period_ns = s_to_ns(1.0 / config.camera.rate_hz);
   const std::size_t count = static_cast<std::size_t>((imu.t1_ns - imu.t0_ns) / period_ns) + 1;
   const TimeNs offset_ns = mounts.camera_offset_ns;
   const SE3 T_I_C[2] = {mounts.T_I_C0, mounts.T_I_C1};
-  const CameraIntrinsics* cams[2] = {&calib.cam0, &calib.cam1};
+  const CameraIntrinsics* cams[2] = {&mounts.cam0, &mounts.cam1};  // the true lenses, not the written ones
   double corner_sum = 0;
   for (std::size_t first = 0; first < count; first += config.parallel_batch) {
     const std::size_t n = std::min<std::size_t>(config.parallel_batch, count - first);
@@ -301,7 +300,7 @@ SequenceReport simulate(const SimConfig& configured, const SimulateRequest& requ
       if (request.progress) request.progress(offset + share * fraction);
     });
   };
-  write_frames(config, request, scene, calib, mounts, imu, writer, report, stage_progress(0.0, image_share));
+  write_frames(config, request, scene, mounts, imu, writer, report, stage_progress(0.0, image_share));
   write_scans(config, request, scene, mounts, imu, writer, kitti, report, stage_progress(image_share, 1.0 - image_share));
   kitti.finish();
   write_tum_copy(imu.groundtruth, staging / "groundtruth.tum");
