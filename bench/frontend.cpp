@@ -42,14 +42,13 @@ const Pairs* euroc_pairs(benchmark::State& state) {
 // The whole pipeline over the sequence, looping; each iteration is one stereo pair (mostly KLT tracking,
 // extraction when tracks run short and after each restart). Counter median_ms: the median time per pair.
 // Argument 1: the default config; 0: the same without the vignetting self-calibration (vignetting_samples 0);
-// 2: the default with anchored tracks (klt_anchor_half_px 7); 3: the default without its 11 px final KLT window
-// (klt_final_window_px 0).
+// 3: the default without its 11 px final KLT window (klt_final_window_px 0). (2 was the anchored tracks, removed
+// on 2026-12-08: docs/removed_options.md.)
 void BM_FrontendSequence(benchmark::State& state) {
   const Pairs* pairs = euroc_pairs(state);
   if (!pairs) return;
   vilslam::FrontendConfig config;
   if (state.range(0) == 0) config.vignetting_samples = 0;
-  if (state.range(0) == 2) config.klt_anchor_half_px = 7;
   if (state.range(0) == 3) config.klt_final_window_px = 0;
   vilslam::Frontend frontend(pairs->calib, config);
   std::vector<double> ms;
@@ -67,7 +66,7 @@ void BM_FrontendSequence(benchmark::State& state) {
   std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
   state.counters["median_ms"] = ms[ms.size() / 2];
 }
-BENCHMARK(BM_FrontendSequence)->Arg(1)->Arg(0)->Arg(2)->Arg(3)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(950);
+BENCHMARK(BM_FrontendSequence)->Arg(1)->Arg(0)->Arg(3)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(950);
 
 // The first pair of a fresh frontend: Shi-Tomasi on both images, ORB, stereo matching, refinement.
 void BM_FrontendExtraction(benchmark::State& state) {

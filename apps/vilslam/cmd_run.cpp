@@ -114,12 +114,6 @@ void print_summary(const OfflineRunResult& r, TimeNs start_t_ns) {
   std::printf("loop detection + constraints ms: median %.2f p95 %.2f max %.2f; correction ms: median %.2f max %.2f\n",
               de.median_ms, de.p95_ms, de.max_ms, co.median_ms, co.max_ms);
   for (const double ms : r.loop->final_solve_ms) std::printf("final solve with the tilt factors ms: %.2f\n", ms);
-  if (r.loop->mount_tilt_L) {
-    const Vec3 deg = *r.loop->mount_tilt_L * (180.0 / M_PI);
-    // About L's x and y axes: a rotation about (nearly) the up direction itself does not turn it.
-    std::printf("LiDAR mount tilt estimated by the last correction (rotation of the measured up directions about L's "
-                "x and y), deg: %.3f %.3f\n", deg.x(), deg.y());
-  }
   if (r.loop->relocalized_t_ns) {
     std::printf("re-localized in the map at t_ns %lld; %zu map loops in the graph\n",
                 static_cast<long long>(*r.loop->relocalized_t_ns), r.loop->map_loops);

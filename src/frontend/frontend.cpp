@@ -131,10 +131,6 @@ std::vector<Frontend::Track> Frontend::track_previous(const ImagePyramid& left, 
     t.match.left_px = to_eigen(left_px[i]);
     t.match.right_px = to_eigen(right_px[k]);
     ++t.match.age_frames;
-    if (config_.klt_anchor_half_px > 0 && !refine_anchored(left, right, &t)) {
-      ++stats_.anchor_rejected;
-      continue;
-    }
     if (!stereo_check(&t)) {
       ++stats_.stereo_rejected;
       continue;
@@ -198,12 +194,6 @@ std::vector<Frontend::Track> Frontend::extract_new(const StereoFrame& frame, con
       ++stats_.stereo_rejected;
       continue;
     }
-    if (config_.klt_anchor_half_px > 0 &&
-        (!make_anchor(frame.left, t.match.left_px, config_.klt_anchor_half_px, &t.left_anchor) ||
-         !make_anchor(frame.right, t.match.right_px, config_.klt_anchor_half_px, &t.right_anchor))) {
-      ++stats_.anchor_rejected;
-      continue;
-    }
     t.match.track_id = next_track_id_++;
     fresh.push_back(t);
   }
@@ -233,14 +223,6 @@ std::vector<Frontend::Track> Frontend::refine_right(const ImagePyramid& left, co
     refined.push_back(fresh[i]);
   }
   return refined;
-}
-
-bool Frontend::refine_anchored(const ImagePyramid& left, const ImagePyramid& right, Track* track) const {
-  const AnchorRefinementConfig config = anchor_refinement_config(config_);
-  // In place: a track whose refinement fails is dropped by the caller, whatever half of it was updated.
-  // Level 0 of each pyramid and its derivatives (build_klt_pyramid keeps them).
-  return refine_to_anchor(left[0], left[1], config, &track->match.left_px, &track->left_anchor) &&
-         refine_to_anchor(right[0], right[1], config, &track->match.right_px, &track->right_anchor);
 }
 
 bool Frontend::stereo_check(Track* track) const {

@@ -7,7 +7,6 @@
 
 #include "common/calibration.h"
 #include "common/types.h"
-#include "frontend/anchored_patch.h"
 #include "frontend/camera_model.h"
 #include "frontend/frontend_config.h"
 #include "frontend/klt_tracker.h"
@@ -22,7 +21,6 @@ struct FrontendStats {
   int stereo_rejected = 0;    // tracked or new matches over the stereo reprojection threshold
   int refine_rejected = 0;    // new matches whose left -> right KLT refinement failed or moved too far
   int temporal_rejected = 0;  // tracked matches inconsistent with the frame-to-frame motion
-  int anchor_rejected = 0;    // tracked or new matches whose anchored refinement failed (klt_anchor_half_px)
   bool motion_valid = false;  // the PnP motion estimate was available for the temporal check
   SE3 T_C0cur_C0prev;         // that estimate (left camera, previous pair to this one) when motion_valid
   int corners_left = 0;       // Shi-Tomasi corners surviving elimination (0 when no extraction ran)
@@ -48,11 +46,7 @@ class Frontend {
   struct Track {
     StereoMatch match;
     Vec3 p_C0 = Vec3::Zero();  // triangulated in this pair's left camera frame
-    PatchAnchor left_anchor, right_anchor;  // the first appearances (FrontendConfig::klt_anchor_half_px > 0)
   };
-  // Refines the track's two pixels against its anchors in these images; false when either fails (the track is
-  // then partly updated and must be dropped).
-  bool refine_anchored(const ImagePyramid& left, const ImagePyramid& right, Track* track) const;
 
   // Also feeds the vignetting self-calibration with each image's KLT steps while it collects (devignetted =
   // this pair as corrected so far, before CLAHE).

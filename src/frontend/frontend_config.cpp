@@ -22,9 +22,6 @@ YamlFields frontend_yaml_fields(FrontendConfig& c) {
       yaml_value("klt_epsilon", c.klt_epsilon),
       yaml_value("klt_max_forward_backward_px", c.klt_max_forward_backward_px),
       yaml_value("klt_final_window_px", c.klt_final_window_px),
-      yaml_value("klt_anchor_half_px", c.klt_anchor_half_px),
-      yaml_value("klt_anchor_max_correction_px", c.klt_anchor_max_correction_px),
-      yaml_value("klt_anchor_min_correlation", c.klt_anchor_min_correlation),
       yaml_value("orb_patch_size", c.orb_patch_size),
       yaml_value("max_descriptor_distance", c.max_descriptor_distance),
       yaml_value("ratio_test", c.ratio_test),
@@ -40,13 +37,6 @@ YamlFields frontend_yaml_fields(FrontendConfig& c) {
       yaml_value("pnp_ransac_threshold_px", c.pnp_ransac_threshold_px),
       yaml_value("ransac_seed", c.ransac_seed),
   };
-}
-
-AnchorRefinementConfig anchor_refinement_config(const FrontendConfig& config) {
-  AnchorRefinementConfig a;
-  a.max_correction_px = config.klt_anchor_max_correction_px;
-  a.min_correlation = config.klt_anchor_min_correlation;
-  return a;
 }
 
 void validate_frontend_config(const FrontendConfig& c, const std::string& source) {
@@ -70,10 +60,6 @@ void validate_frontend_config(const FrontendConfig& c, const std::string& source
   require(c.klt_final_window_px == 0 ||
               (c.klt_final_window_px >= 5 && c.klt_final_window_px % 2 == 1 && c.klt_final_window_px <= c.klt_window_px),
           "klt_final_window_px must be 0 (off) or odd, >= 5 and at most klt_window_px");
-  require(c.klt_anchor_half_px >= 0 && c.klt_anchor_half_px <= 32, "klt_anchor_half_px must be in [0, 32] (0 = off)");
-  require(c.klt_anchor_max_correction_px > 0, "klt_anchor_max_correction_px must be > 0");
-  require(c.klt_anchor_min_correlation > -1 && c.klt_anchor_min_correlation < 1,
-          "klt_anchor_min_correlation must be in (-1, 1)");
   require(c.orb_patch_size >= 7 && c.orb_patch_size <= 63, "orb_patch_size must be in [7, 63]");
   require(c.max_descriptor_distance > 0 && c.max_descriptor_distance <= 256, "max_descriptor_distance must be in (0, 256]");
   require(c.ratio_test > 0 && c.ratio_test <= 1, "ratio_test must be in (0, 1]");

@@ -4,7 +4,6 @@
 #include <string>
 
 #include "common/yaml_config.h"
-#include "frontend/anchored_patch.h"
 
 namespace vilslam {
 
@@ -40,14 +39,6 @@ struct FrontendConfig {
   // the pyramidal result; 0 keeps klt_window_px at every level. 11 with the global graph's bearing_min_step_m
   // 0.05 (decided together, 2026-12-07; docs/frontend.md, "A small final KLT window").
   int klt_final_window_px = 11;
-  // Anchored tracks (frontend/anchored_patch.h): each KLT position is refined against the patch where the track
-  // began, under an affine warp with gain and offset, so the per-frame KLT bias does not add up along the track;
-  // a track whose refinement fails is ended. Half size of that patch in pixels; 0 turns it off (the default:
-  // better in the tunnel, worse in plain corridors; docs/frontend.md, "Anchored tracks").
-  int klt_anchor_half_px = 0;
-  // Farthest the refinement may move the KLT position. 1 px let wrong fits through outdoors (docs/frontend.md).
-  double klt_anchor_max_correction_px = 0.3;
-  double klt_anchor_min_correlation = 0.5;    // of the warped patch with the first one
   // ORB descriptors (cv::ORB::compute) on the surviving corners; corners nearer the border are dropped.
   int orb_patch_size = 31;
   // Brute-force stereo matching.
@@ -69,9 +60,6 @@ struct FrontendConfig {
   double pnp_ransac_threshold_px = 2.0;
   std::uint64_t ransac_seed = 1;
 };
-
-// The anchored-track refinement's settings of the config.
-AnchorRefinementConfig anchor_refinement_config(const FrontendConfig& config);
 
 // The YAML keys of the config (the field names), bound to c's fields: the `frontend:` section of a run
 // config (pipeline/run_config.h). Validate after reading.

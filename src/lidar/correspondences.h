@@ -15,12 +15,14 @@ struct AssociationConfig {
   double min_line_eigen_ratio = 3.0;          // largest / second eigenvalue of the neighbours' scatter
   double max_plane_point_distance_m = 0.2;    // every neighbour within this of the fitted plane
   // Second / largest eigenvalue of the neighbours' scatter a plane needs: neighbours along one ring (a line
-  // with range noise across it) leave the plane's tilt about that line to the noise.
+  // with range noise across it) leave the plane's tilt about that line to the noise. Set by the loop ICP only
+  // (LoopClosureConfig::icp_min_plane_spread_ratio); LiDAR mapping keeps 0.
   double min_plane_spread_ratio = 0.0;
   // The plane through the nearest neighbour instead of the neighbours' centroid (normal from all of them). On a
   // curved surface (a tunnel's arch) sparse neighbours spread along a ring bulge away from their chord, so the
   // centroid's plane lies inside the surface and every query on it misses to the same side; two sweeps from one
-  // pose then come out tilted against each other (docs/loop.md, "Plane fits of single key scans").
+  // pose then come out tilted against each other (docs/loop.md, "Plane fits of single key scans"). Set by the loop
+  // ICP only (LoopClosureConfig::icp_plane_through_nearest); LiDAR mapping keeps the centroid.
   bool plane_through_nearest = false;
   // Normal compatibility (Rusinkiewicz and Levoy 2001, "Efficient variants of the ICP algorithm"): a surface
   // point whose own normal is known is matched only to a plane within this angle of it; 0 = no test. Inside a

@@ -95,8 +95,6 @@ YamlFields lidar_yaml_fields(LidarConfig& c) {
                     yaml_value("max_neighbor_distance_m", a.max_neighbor_distance_m),
                     yaml_value("min_line_eigen_ratio", a.min_line_eigen_ratio),
                     yaml_value("max_plane_point_distance_m", a.max_plane_point_distance_m),
-                    yaml_value("min_plane_spread_ratio", a.min_plane_spread_ratio),
-                    yaml_value("plane_through_nearest", a.plane_through_nearest),
                     yaml_value("max_normal_angle_deg", a.max_normal_angle_deg)}),
   };
 }

@@ -26,10 +26,9 @@ GlobalPoseGraph::GlobalPoseGraph(const GlobalPoseGraphConfig& config)
     : config_(config),
       odometry_covariance_(information_from_sigmas(config.odometry_sigma_m, config.odometry_sigma_rad).inverse()) {
   if (config.anchor_spacing == 0 || config.max_anchors < 2 || !(config.degenerate_sigma >= 0.0) ||
-      !(config.mount_tilt_sigma_rad >= 0.0) || !std::isfinite(config.mount_tilt_sigma_rad) ||
       !(config.tilt_sigma_rad >= 0.0) || !(config.bearing_min_step_m >= 0.0) || !std::isfinite(config.bearing_min_step_m)) {
     throw std::invalid_argument("global pose graph: anchor_spacing must be >= 1, max_anchors >= 2, degenerate_sigma "
-                                "and tilt_sigma_rad >= 0, mount_tilt_sigma_rad and bearing_min_step_m finite and >= 0");
+                                "and tilt_sigma_rad >= 0, bearing_min_step_m finite and >= 0");
   }
 }
 
@@ -65,10 +64,6 @@ void GlobalPoseGraph::set_up_direction(std::size_t index, const Vec3& up_L, doub
                                 " is not finite and non-zero, its sigma not finite and >= 0, or the pose is not added");
   }
   up_L_[index] = MeasuredUp{up_L.normalized(), std::max(config_.tilt_sigma_rad, sigma_rad)};
-  const double sigma = up_L_[index]->sigma_rad;
-  if (config_.tilt_offset && sigma > 0.0) {
-    up_offset_.add(up_L_[index]->up_L, poses_[index].T_W_B.rotation(), 1.0 / (sigma * sigma));
-  }
 }
 
 void GlobalPoseGraph::add_loop(std::size_t from_index, std::size_t to_index, const SE3& T_from_to,
@@ -81,7 +76,6 @@ void GlobalPoseGraph::add_loop(std::size_t from_index, std::size_t to_index, con
 
 void GlobalPoseGraph::transform(const SE3& T_new_old) {
   for (TimedPose& p : poses_) p.T_W_B = T_new_old * p.T_W_B;
-  up_offset_.rotate_world(T_new_old.rotation());
 }
 
 void GlobalPoseGraph::add_map_loop(const SE3& T_W_from, std::size_t to_index, const SE3& T_from_to,
@@ -182,11 +176,9 @@ CorrectionSummary GlobalPoseGraph::solve(bool with_tilt) {
     reduced.add_constraint({m, slot(c.to_index), c.T_from_to, c.information, ConstraintKind::kLoop});
   }
   if (with_tilt) {
-    const Mat3 R_offset = config_.tilt_offset ? so3::exp(up_offset_.mount()) : Mat3::Identity();
     for (std::size_t k = map_loops_.empty() ? 1 : 0; k < anchors.size(); ++k) {  // a fixed first pose needs none
-      if (const auto& up = up_L_[anchors[k]]) reduced.add_tilt({first + k, R_offset * up->up_L, up->sigma_rad});
+      if (const auto& up = up_L_[anchors[k]]) reduced.add_tilt({first + k, up->up_L, up->sigma_rad});
     }
-    if (config_.mount_tilt_sigma_rad > 0.0) reduced.estimate_up_rotation(config_.mount_tilt_sigma_rad);
   }
   PoseGraphOptions options;
   options.loop_loss = config_.loop_loss;
@@ -207,7 +199,6 @@ CorrectionSummary GlobalPoseGraph::solve(bool with_tilt) {
   summary.converged = solved.converged;
   summary.initial_cost = solved.initial_cost;
   summary.final_cost = solved.final_cost;
-  if (with_tilt && config_.mount_tilt_sigma_rad > 0.0) summary.up_rotation_L = reduced.up_rotation();
   summary.solve_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return summary;
 }

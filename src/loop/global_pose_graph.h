@@ -14,7 +14,6 @@
 #include "common/types.h"
 #include "loop/odometry_chain.h"
 #include "loop/pose_graph.h"
-#include "loop/tilt_offset.h"
 
 namespace vilslam::loop {
 
@@ -29,24 +28,11 @@ struct GlobalPoseGraphConfig {
   // 0 = none. Without it a loop can bend the route in roll and pitch to fit one tilted key frame. Chosen on the
   // tuning seeds 1, 2 and 7 (docs/pose_graph.md, "Tilt factors from the VIO").
   double tilt_sigma_rad = 0.005;
-  // Take the LiDAR mount's tilt error out of every tilt factor: the VIO's up reaches L through the calibrated
-  // mount, and a mount a fraction of a degree off tilts it by a rotation fixed in L, which would bend the route
-  // (docs/pose_graph.md, "The mount's tilt in the tilt factors"). Estimated from the rotations, measured up to the
-  // LiDAR's own up, as a part fixed in L plus a part fixed in the world (the map's own tilt): only turns tell them
-  // apart, and without turns the whole goes to the map's tilt, as before. Off by default: worse on the tuning
-  // seeds (docs/pose_graph.md).
-  bool tilt_offset = false;
   // The tilt factors only in the final solve (optimize_final, lidar_final.tum), not in the corrections fed back to
   // LiDAR mapping: a correction that levels the route also tilts the old map under a revisit, whose published poses
   // then lie off the first visit's as published (issue 9 item 4). On by default since 2026-12-07 for that, at about
   // 1 % of final ATE on the tuning routes (docs/pose_graph.md, "Levelling only at the end").
   bool tilt_final_only = true;
-  // Prior sigma (rad) of a rotation eps_L estimated in every correction with the poses and applied to every tilt
-  // factor's up direction (PoseGraph::estimate_up_rotation); 0 = none. A mount pitched against its calibration
-  // pitches every pose the tilt factors hold, and the odometry's forward motion then descends along the whole
-  // route, which a loop contradicts: a loop makes the mount's pitch observable (docs/pose_graph.md, "The
-  // mount's tilt estimated in the graph").
-  double mount_tilt_sigma_rad = 0.0;
   // Odometry chains that move at least this far (m) are compared as a length and a bearing, the bearing's error at
   // the measured length; 0 = off. Otherwise a pose held pitched against its level step (a mount's pitch in the tilt
   // factors) leaves a residual across the step that shrinks with its length, and a degenerate step's length is
@@ -72,7 +58,6 @@ struct CorrectionSummary {
   bool converged = false;
   double initial_cost = 0.0;
   double final_cost = 0.0;
-  std::optional<Vec3> up_rotation_L;  // eps_L of config.mount_tilt_sigma_rad (rad), when estimated
 };
 
 class GlobalPoseGraph {
@@ -89,9 +74,8 @@ class GlobalPoseGraph {
   std::size_t add_odometry(TimeNs t_ns, const SE3& T_prev_cur, const std::vector<Vec6>& degenerate_directions = {});
   // The pose's up direction R_W_L^T e_z as measured against gravity (the VIO's at the same instant); used when
   // config.tilt_sigma_rad > 0, with the larger of that sigma and the measurement's own (sigma_rad, the VIO's
-  // tilt standard deviation when known). With config.tilt_offset, its rotation to the pose's own up direction at
-  // this moment is a sample of the mount's tilt error (loop/tilt_offset.h). Throws std::invalid_argument on a bad
-  // index or a non-finite or zero vector.
+  // tilt standard deviation when known). Throws std::invalid_argument on a bad index or a non-finite or zero
+  // vector.
   void set_up_direction(std::size_t index, const Vec3& up_L, double sigma_rad = 0.0);
   // A loop factor measuring T_from_to = (T_W_from)^-1 T_W_to; throws std::invalid_argument on a bad index
   // or an information matrix that is not symmetric positive definite.
@@ -136,7 +120,6 @@ class GlobalPoseGraph {
     double sigma_rad;  // of the tilt factor
   };
   std::vector<std::optional<MeasuredUp>> up_L_;  // measured up direction per pose
-  UpOffsetSamples up_offset_;  // config.tilt_offset: the mount's tilt error in the measured up directions
   std::vector<RelativePoseConstraint> loops_;
   struct MapLoop {
     SE3 T_W_from;

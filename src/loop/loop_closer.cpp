@@ -27,24 +27,6 @@ void check_key_frame(const KeyFrame& k, TimeNs last_t_ns, bool has_last) {
   if (has_last && k.image.t_ns <= last_t_ns) throw InputError(source, "not after the previous key frame");
 }
 
-// The candidate's key scan in Lu, or with half_width > 0 the key scans around it moved into Lu by the
-// current pose estimates (relative poses over short spans are accurate).
-lidar::FeatureMap candidate_map(const std::vector<KeyFrame>& key_frames, std::size_t candidate, int half_width,
-                                const lidar::FeatureMapConfig& map_config,
-                                const std::function<SE3(std::size_t)>& T_W_L_of_pose) {
-  lidar::FeatureMap map(map_config);
-  const KeyFrame& u = key_frames[candidate];
-  map.insert(u.features_L, SE3());
-  if (half_width == 0) return map;
-  const SE3 T_Lu_W = T_W_L_of_pose(u.pose_index).inverse();
-  const std::size_t first = candidate >= static_cast<std::size_t>(half_width) ? candidate - half_width : 0;
-  const std::size_t last = std::min(key_frames.size() - 1, candidate + static_cast<std::size_t>(half_width));
-  for (std::size_t j = first; j <= last; ++j) {
-    if (j != candidate) map.insert(key_frames[j].features_L, T_Lu_W * T_W_L_of_pose(key_frames[j].pose_index));
-  }
-  return map;
-}
-
 LoopCandidateRecord rejected(LoopCandidateRecord r, const char* stage) {
   r.rejected_by = stage;
   return r;
@@ -207,9 +189,10 @@ LoopCandidateRecord LoopCloser::verify(const KeyFrame& u, const KeyFrame& v, dou
   }
   r.T_Lu_Lv_epnp = initial->T_Lu_Lv;
 
-  // Refinement by ICP of the sparse LiDAR features, initialized at the visual constraint (or the resume guess).
-  const lidar::FeatureMap map =
-      candidate_map(pool.key_frames, u.id, config_.submap_half_width, lidar_.map, pool.T_W_L_of_pose);
+  // Refinement by ICP of the sparse LiDAR features against the candidate's key scan in Lu, initialized at the
+  // visual constraint (or the resume guess).
+  lidar::FeatureMap map(lidar_.map);
+  map.insert(u.features_L, SE3());
   const lidar::RegistrationResult icp = lidar::register_scan(v.features_L, map, r.T_Lu_Lv_epnp, lidar_.registration);
   r.T_Lu_Lv_icp = r.T_Lu_Lv = icp.T_W_L;
   r.icp_rms_m = icp.rms_residual_m;

@@ -3,7 +3,7 @@
 // the BoW database of older key images (only those older than a time threshold), candidates are verified
 // by descriptor matching against the left key image, a loop constraint is estimated by EPnP in RANSAC on
 // the candidate's stereo-triangulated points and refined by ICP of the current key scan's sparse features
-// against the candidate's key scan (or a submap of key scans around it). A loop is accepted only when the
+// against the candidate's key scan. A loop is accepted only when the
 // ICP result is well constrained and agrees with EPnP and with the odometry (repeated structure guard).
 #include <cstddef>
 #include <cstdint>
@@ -37,10 +37,9 @@ struct LoopClosureConfig {
   double pnp_reprojection_px = 3.0;
   int pnp_ransac_iterations = 200;
   std::uint64_t pnp_ransac_seed = 1;   // cv::theRNG() state before each RANSAC
-  // ICP of the query key scan against the candidate's (paper) or a submap around it (beyond the paper).
-  int submap_half_width = 0;           // key scans on each side of the candidate; 0 = scan to scan
-  // The run's LiDAR registration settings, but denser: LiDAR mapping thins an accumulated map, a single
-  // key scan (or a few) keeps its features at this spacing and the query's at this voxel leaf.
+  // ICP of the query key scan against the candidate's (paper). The run's LiDAR registration settings, but
+  // denser: LiDAR mapping thins an accumulated map, a single key scan keeps its features at this spacing and the
+  // query's at this voxel leaf.
   double icp_map_point_spacing_m = 0.05;
   double icp_source_leaf_m = 0.1;
   // A single key scan is sparse across rings: planes need neighbours spread over two axes (second / largest
@@ -158,7 +157,7 @@ class LoopCloser {
   // Verifies the BoW candidates of key_frame (its id is set here to the next position), then stores it in
   // the database and the key frame list, unless it revisits a stored key frame (KeyFramePolicy::keep_revisits):
   // then it is merged into that one, and its records name that one as the query key frame. T_W_L(pose_index) is the current best estimate of any earlier
-  // graph pose (for the submap and the odometry check). Returns every examined candidate, in BoW order;
+  // graph pose (for the odometry check). Returns every examined candidate, in BoW order;
   // examination stops at the first accepted one (at most one loop per query). Throws InputError when the
   // key frame's image rows are inconsistent or it is not after the previous key frame.
   std::vector<LoopCandidateRecord> add_and_detect(KeyFrame key_frame,

@@ -27,7 +27,6 @@ YamlFields loop_closure_yaml_fields(LoopClosureConfig& c) {
       yaml_value("pnp_reprojection_px", c.pnp_reprojection_px),
       yaml_value("pnp_ransac_iterations", c.pnp_ransac_iterations),
       yaml_value("pnp_ransac_seed", c.pnp_ransac_seed),
-      yaml_value("submap_half_width", c.submap_half_width),
       yaml_value("icp_map_point_spacing_m", c.icp_map_point_spacing_m),
       yaml_value("icp_source_leaf_m", c.icp_source_leaf_m),
       yaml_value("icp_min_plane_spread_ratio", c.icp_min_plane_spread_ratio),
@@ -88,7 +87,6 @@ void validate_loop_closure_config(const LoopClosureConfig& c, const std::string&
           "min_descriptor_matches and min_pnp_inliers must be at least 5");
   require(c.pnp_reprojection_px > 0, "pnp_reprojection_px must be positive");
   require(c.pnp_ransac_iterations >= 1, "pnp_ransac_iterations must be at least 1");
-  require(c.submap_half_width >= 0, "submap_half_width must not be negative");
   require(c.icp_min_matched_fraction >= 0 && c.icp_min_matched_fraction <= 1 && c.icp_min_inlier_fraction >= 0 &&
               c.icp_min_inlier_fraction <= 1,
           "icp_min_matched_fraction and icp_min_inlier_fraction must be in [0, 1]");

@@ -2,7 +2,6 @@
 #include "loop/pose_graph.h"
 
 #include <ceres/ceres.h>
-#include <ceres/normal_prior.h>
 #include <ceres/product_manifold.h>
 
 #include <array>
@@ -93,13 +92,6 @@ void PoseGraph::add_tilt(const TiltConstraint& tilt) {
   tilts_.push_back(tilt);
 }
 
-void PoseGraph::estimate_up_rotation(double prior_sigma_rad) {
-  if (!(prior_sigma_rad > 0.0) || !std::isfinite(prior_sigma_rad)) {
-    throw std::invalid_argument("pose graph: the up rotation's prior sigma must be positive and finite");
-  }
-  up_rotation_sigma_rad_ = prior_sigma_rad;
-}
-
 PoseGraphSummary PoseGraph::optimize(const PoseGraphOptions& options) {
   PoseGraphSummary summary;
   if (poses_.empty()) return summary;
@@ -121,21 +113,10 @@ PoseGraphSummary PoseGraph::optimize(const PoseGraphOptions& options) {
         c.kind == ConstraintKind::kLoop ? make_loss(options.loop_loss, options.loop_loss_scale).release() : nullptr;
     problem.AddResidualBlock(cost, loss, blocks[c.from_index].data(), blocks[c.to_index].data());
   }
-  const bool with_up_rotation = up_rotation_sigma_rad_ > 0.0 && !tilts_.empty();
   for (const TiltConstraint& t : tilts_) {
-    if (with_up_rotation) {
-      problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<TiltFactor, 3, kPoseBlockSize, 3>(new TiltFactor(t.up_L, t.sigma_rad)), nullptr,
-          blocks[t.index].data(), up_rotation_.data());
-    } else {
-      problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<TiltFactor, 3, kPoseBlockSize>(new TiltFactor(t.up_L, t.sigma_rad)), nullptr,
-          blocks[t.index].data());
-    }
-  }
-  if (with_up_rotation) {
-    const Mat3 A = Mat3::Identity() / up_rotation_sigma_rad_;
-    problem.AddResidualBlock(new ceres::NormalPrior(A, Vec3::Zero()), nullptr, up_rotation_.data());
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<TiltFactor, 3, kPoseBlockSize>(new TiltFactor(t.up_L, t.sigma_rad)), nullptr,
+        blocks[t.index].data());
   }
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     if (fixed_[i]) problem.SetParameterBlockConstant(blocks[i].data());

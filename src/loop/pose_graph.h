@@ -74,11 +74,6 @@ class PoseGraph {
   void add_constraint(const RelativePoseConstraint& constraint);
   // Throws std::invalid_argument on an index out of range, a non-positive sigma or a non-finite or zero up_L.
   void add_tilt(const TiltConstraint& tilt);
-  // Estimates, with the poses, one rotation eps_L shared by every tilt factor (the measured up directions become
-  // Exp(eps_L) up_L: a LiDAR mount off by eps_L turns them all alike), with a zero-mean prior of prior_sigma_rad
-  // per axis. Throws std::invalid_argument unless prior_sigma_rad is positive and finite.
-  void estimate_up_rotation(double prior_sigma_rad);
-  const Vec3& up_rotation() const { return up_rotation_; }  // eps_L after optimize(); zero when not estimated
 
   // Optimizes all poses from their current values; pose 0 and the fixed ones stay.
   PoseGraphSummary optimize(const PoseGraphOptions& options = {});
@@ -91,8 +86,6 @@ class PoseGraph {
   std::vector<bool> fixed_;
   std::vector<RelativePoseConstraint> constraints_;
   std::vector<TiltConstraint> tilts_;
-  double up_rotation_sigma_rad_ = 0.0;  // 0: eps_L not estimated
-  Vec3 up_rotation_ = Vec3::Zero();
 };
 
 // Throws std::invalid_argument on an index not below pose_count, from == to, or an information matrix that is not

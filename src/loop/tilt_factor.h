@@ -2,10 +2,6 @@
 // A gravity-tilt factor of the global pose graph, templated for Ceres autodiff: the VIO measures roll and pitch
 // against gravity without drift, so each pose's up direction in its own frame, R_W_L^T e_z, is pulled towards the
 // VIO's. Yaw and position stay free (they are not observable from gravity). Pose block as relative_pose_factor.h.
-// With a second block, a rotation vector eps_L shared by all tilt factors (the LiDAR mount's error, which turns
-// every measured up direction alike), the measurement is Exp(eps_L) up_L.
-#include <ceres/rotation.h>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -22,21 +18,6 @@ class TiltFactor {
   template <typename T>
   bool operator()(const T* pose, T* residual) const {
     const Eigen::Matrix<T, 3, 1> up_measured = up_L_.cast<T>();
-    return evaluate(pose, up_measured, residual);
-  }
-
-  // r = (R_W_L^T e_z - Exp(eps_L) up_L) / sigma.
-  template <typename T>
-  bool operator()(const T* pose, const T* eps_L, T* residual) const {
-    const Eigen::Matrix<T, 3, 1> up = up_L_.cast<T>();
-    Eigen::Matrix<T, 3, 1> up_measured;
-    ceres::AngleAxisRotatePoint(eps_L, up.data(), up_measured.data());
-    return evaluate(pose, up_measured, residual);
-  }
-
- private:
-  template <typename T>
-  bool evaluate(const T* pose, const Eigen::Matrix<T, 3, 1>& up_measured, T* residual) const {
     const Eigen::Map<const Eigen::Quaternion<T>> q_W_L(pose);
     const Eigen::Matrix<T, 3, 1> up_est = q_W_L.conjugate() * Eigen::Matrix<T, 3, 1>::UnitZ();
     Eigen::Map<Eigen::Matrix<T, 3, 1>> r(residual);
@@ -44,6 +25,7 @@ class TiltFactor {
     return true;
   }
 
+ private:
   Vec3 up_L_;
   double weight_;
 };

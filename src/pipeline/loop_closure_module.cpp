@@ -104,7 +104,7 @@ void LoopClosureModule::add_key_frame(const PendingKeyScan& scan, const StereoFr
   }
   if (!loop_found) return;
   start = std::chrono::steady_clock::now();
-  note_correction(graph_.optimize());
+  graph_.optimize();
   // The mapper resumes from its latest pose, corrected; lidar.tum stays continuous.
   correction_ = correction_at(graph_.size() - 1);
   out_.correction_ms.push_back(elapsed_ms(start));
@@ -169,10 +169,6 @@ std::optional<SE3> LoopClosureModule::resume_guess(TimeNs query_t_ns) const {
   return SE3(R_yaw, T_map_run.translation());
 }
 
-void LoopClosureModule::note_correction(const loop::CorrectionSummary& summary) {
-  if (summary.up_rotation_L) out_.mount_tilt_L = summary.up_rotation_L;
-}
-
 MapCorrection LoopClosureModule::correction_at(std::size_t pose_index) const {
   MapCorrection c;
   c.T_W_L_last = graph_.pose(pose_index);
@@ -221,7 +217,7 @@ void LoopClosureModule::scan_mapped(const lidar::LidarMappingResult& mapped, con
     // of single key scans, from a guess, against the registration of this sweep on all the key scans around it.
     graph_.remove_map_loops(resumed_map_loops_);
     resumed_map_loops_.clear();
-    note_correction(graph_.optimize());
+    graph_.optimize();
     out_.correction_ms.push_back(elapsed_ms(start));
   }
   last_mapper_T_W_L_ = mapped.T_W_L;
@@ -252,7 +248,6 @@ LoopClosureOutput LoopClosureModule::finish() {
   if (closer_) out_.key_frame_data = closer_->release_key_frames();
   if (corrected_) {
     const loop::CorrectionSummary final_solve = graph_.optimize_final();
-    note_correction(final_solve);
     if (final_solve.variables > 0) out_.final_solve_ms.push_back(final_solve.solve_ms);
   }
   out_.lidar_final = graph_.size() > 0 ? graph_.trajectory() : Trajectory{};

@@ -40,9 +40,6 @@ struct LoopClosureOutput {
   std::optional<TimeNs> relocalized_t_ns;
   SE3 T_map_run;
   std::size_t map_loops = 0;
-  // With loop_closure.graph.mount_tilt_sigma_rad > 0: the rotation of the measured up directions (the LiDAR
-  // mount's tilt error, in L, rad) that the last correction estimated; none before a correction.
-  std::optional<Vec3> mount_tilt_L;
 };
 
 // What LiDAR mapping must do after a loop: resume from T_W_L_last on a map rebuilt from the key scans.
@@ -102,8 +99,6 @@ class LoopClosureModule {
   // After a reset, within resume_window_s of the new segment's first pose: where its frame lies in the map if
   // the map's last pose is carried across the reset by the segment's first motion (LoopCloser::set_resume_guess).
   std::optional<SE3> resume_guess(TimeNs query_t_ns) const;
-  // Keeps what a correction estimated that the outputs report (the mount's tilt).
-  void note_correction(const loop::CorrectionSummary& summary);
 
   loop::LoopClosureConfig config_;
   std::shared_ptr<const Vocabulary> vocabulary_;

@@ -11,8 +11,7 @@ namespace {
 YamlFields graph_yaml_fields(loop::GlobalPoseGraphConfig& c) {
   return {yaml_value("odometry_sigma_m", c.odometry_sigma_m), yaml_value("odometry_sigma_rad", c.odometry_sigma_rad),
           yaml_value("degenerate_sigma", c.degenerate_sigma), yaml_value("tilt_sigma_rad", c.tilt_sigma_rad),
-          yaml_value("tilt_offset", c.tilt_offset), yaml_value("tilt_final_only", c.tilt_final_only),
-          yaml_value("mount_tilt_sigma_rad", c.mount_tilt_sigma_rad),
+          yaml_value("tilt_final_only", c.tilt_final_only),
           yaml_value("bearing_min_step_m", c.bearing_min_step_m),
           yaml_value("loop_loss_scale", c.loop_loss_scale), yaml_value("max_iterations", c.max_iterations),
           yaml_value("anchor_spacing", c.anchor_spacing), yaml_value("max_anchors", c.max_anchors)};
@@ -62,9 +61,6 @@ void validate_graph_config(const loop::GlobalPoseGraphConfig& c, const std::stri
   positive(c.loop_loss_scale, "loop_loss_scale");
   if (!(c.degenerate_sigma >= 0)) throw InputError(path, "'loop_closure.graph.degenerate_sigma' must be >= 0");
   if (!(c.tilt_sigma_rad >= 0)) throw InputError(path, "'loop_closure.graph.tilt_sigma_rad' must be >= 0");
-  if (!(c.mount_tilt_sigma_rad >= 0) || !std::isfinite(c.mount_tilt_sigma_rad)) {
-    throw InputError(path, "'loop_closure.graph.mount_tilt_sigma_rad' must be finite and >= 0");
-  }
   if (!(c.bearing_min_step_m >= 0) || !std::isfinite(c.bearing_min_step_m)) {
     throw InputError(path, "'loop_closure.graph.bearing_min_step_m' must be finite and >= 0");
   }

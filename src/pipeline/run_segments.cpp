@@ -99,7 +99,6 @@ void append_segment(OfflineRunResult& run, OfflineRunResult&& segment, TimeNs st
     append(to.correction_ms, std::move(from.correction_ms));
     append(to.final_solve_ms, std::move(from.final_solve_ms));
     to.map_loops += from.map_loops;
-    if (from.mount_tilt_L) to.mount_tilt_L = from.mount_tilt_L;  // the latest segment's estimate
   }
 }
 

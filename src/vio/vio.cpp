@@ -39,7 +39,7 @@ void Vio::add_imu(const ImuSample& sample) {
   if (!initialized() || sample.t_ns <= smoother_.newest().t_ns) return;
   const NavState x = propagator_.add(sample);
   latest_imu_ = VioImuOutput{x.t_ns, x.T_W_I(), x.v_W_m_s, T_O_W_ * x.T_W_I(),
-                             published_tilt_sigma_rad(smoother_.newest())};
+                             tilt_sigma_rad(smoother_.newest(), smoother_.newest_covariance())};
   if (on_imu_) on_imu_(*latest_imu_);
 }
 
@@ -130,7 +130,7 @@ void Vio::publish_imu_poses(const std::vector<ImuSample>& samples, TimeNs t_ns) 
   const auto first_after = first_sample_after(samples, x.t_ns);
   Propagator propagator(calib_.imu, smoother_.gravity_W());
   propagator.reset(x, std::vector<ImuSample>(samples.begin(), first_after));
-  const double x_tilt_sigma_rad = published_tilt_sigma_rad(x);  // one state for all samples
+  const double x_tilt_sigma_rad = tilt_sigma_rad(x, smoother_.newest_covariance());  // one state for all samples
   for (auto it = first_after; it != samples.end() && it->t_ns <= t_ns; ++it) {
     const NavState y = propagator.add(*it);
     latest_imu_ = VioImuOutput{y.t_ns, y.T_W_I(), y.v_W_m_s, T_O_W_ * y.T_W_I(), x_tilt_sigma_rad};
@@ -151,8 +151,6 @@ void Vio::begin_window(const NavState& x0, const Vec15& prior_sigma, const Front
     x.p_W_I = last.p_W_I + x.v_W_m_s * ns_to_s(x0.t_ns - last.t_ns);
   }
   smoother_.initialize(x, prior_sigma, frame);
-  window_start_yaw_rad_ = so3::yaw_rad(x.R_W_I);
-  turned_ = false;
   if (restarting_ && latest_imu_) T_O_W_ = latest_imu_->T_O_I * x.T_W_I().inverse();  // O continues where it was
   restarted_ = restarting_;
   restarting_ = false;
@@ -168,14 +166,7 @@ void Vio::declare_lost(const FrontendOutput& frame, VioLoss reason) {
   if (on_lost_) on_lost_(event);
 }
 
-double Vio::published_tilt_sigma_rad(const NavState& x) const {
-  const double sigma = tilt_sigma_rad(x, smoother_.newest_covariance());
-  return turned_ ? sigma : std::max(sigma, config_.unturned_tilt_sigma_rad);
-}
-
 void Vio::publish_state(const FrontendOutput& frame, double imu_gap_s) {
-  const double turn_rad = so3::yaw_rad(smoother_.newest().R_W_I) - window_start_yaw_rad_;
-  if (std::abs(std::remainder(turn_rad, 2.0 * M_PI)) >= config_.tilt_turn_rad) turned_ = true;
   latest_state_ = VioStateOutput{smoother_.newest(), smoother_.newest_covariance(), smoother_.stats().landmarks,
                                  static_cast<int>(frame.matches.size()), imu_gap_s, restarted_};
   restarted_ = false;

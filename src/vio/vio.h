@@ -31,15 +31,6 @@ struct VioConfig {
   double moving_velocity_sigma_m_s = 1.0;
   double prior_gyro_bias_sigma_rad_s = 0.01;
   double prior_accel_bias_sigma_m_s2 = 0.2;
-  // An accelerometer bias fixed in the body and gravity fixed in the world are told apart by turns: before the rig
-  // has turned, the window's tilt follows small model errors (a camera mount and clock slightly off: 2 deg on a
-  // straight start, docs/vio.md) while its covariance says a few tenths. Until the heading has changed by
-  // tilt_turn_rad since the window began, the published tilt standard deviation (VioImuOutput::tilt_sigma_rad,
-  // which weighs the mapper's tilt prior and the global graph's tilt factors) is at least unturned_tilt_sigma_rad
-  // (0: off; 0.035 passed the tuning routes but not the reporting seeds: docs/vio.md, "The tilt before the first
-  // turn").
-  double unturned_tilt_sigma_rad = 0.0;
-  double tilt_turn_rad = 1.0472;
 };
 
 // Optimized state at a stereo frame.
@@ -108,8 +99,6 @@ class Vio {
   void declare_lost(const FrontendOutput& frame, VioLoss reason);
   // The IMU-rate poses of samples after the newest state up to t_ns (an aligned window's, once it aligned).
   void publish_imu_poses(const std::vector<ImuSample>& samples, TimeNs t_ns);
-  // tilt_sigma_rad of x with the newest covariance, floored before the first turn (VioConfig).
-  double published_tilt_sigma_rad(const NavState& x) const;
 
   VioConfig config_;
   RigCalibration calib_;
@@ -123,8 +112,6 @@ class Vio {
   std::optional<VioStateOutput> latest_state_;
   std::optional<VioImuOutput> latest_imu_;
   SE3 T_O_W_;  // the jump-free frame O of VioImuOutput::T_O_I
-  double window_start_yaw_rad_ = 0.0;  // heading of the window's first state
-  bool turned_ = false;                // the heading has changed by config_.tilt_turn_rad since
   std::function<void(const VioStateOutput&)> on_state_;
   std::function<void(const VioImuOutput&)> on_imu_;
   std::function<void(const VioLossEvent&)> on_lost_;

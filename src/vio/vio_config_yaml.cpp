@@ -47,8 +47,6 @@ YamlFields vio_yaml_fields(VioConfig& c) {
       yaml_value("moving_velocity_sigma_m_s", c.moving_velocity_sigma_m_s),
       yaml_value("prior_gyro_bias_sigma_rad_s", c.prior_gyro_bias_sigma_rad_s),
       yaml_value("prior_accel_bias_sigma_m_s2", c.prior_accel_bias_sigma_m_s2),
-      yaml_value("unturned_tilt_sigma_rad", c.unturned_tilt_sigma_rad),
-      yaml_value("tilt_turn_rad", c.tilt_turn_rad),
   };
 }
 
@@ -91,8 +89,6 @@ void validate_vio_config(const VioConfig& c, const std::string& source) {
           "prior_velocity_sigma_m_s and moving_velocity_sigma_m_s must be > 0");
   require(c.prior_gyro_bias_sigma_rad_s > 0, "prior_gyro_bias_sigma_rad_s must be > 0");
   require(c.prior_accel_bias_sigma_m_s2 > 0, "prior_accel_bias_sigma_m_s2 must be > 0");
-  require(c.unturned_tilt_sigma_rad >= 0, "unturned_tilt_sigma_rad must be >= 0");
-  require(c.tilt_turn_rad >= 0 && c.tilt_turn_rad <= M_PI, "tilt_turn_rad must be in [0, pi]");
 }
 
 }  // namespace vilslam

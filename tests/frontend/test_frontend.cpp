@@ -133,46 +133,6 @@ TEST(Frontend, TracksKeepTheirIdsAndFollowTheirPoint) {
   EXPECT_GT(first_ids_alive, first_ids / 2);
 }
 
-// Anchored tracks (klt_anchor_half_px) over the same 12 pairs: the tracks that live from the first pair to the
-// last end nearer their true point than frame-to-frame KLT's.
-TEST(Frontend, AnchoredTracksDriftLessThanFrameToFrameKlt) {
-  const SyntheticSequence seq;
-  const auto mean_drift_px = [&](int anchor_half_px, int* resets) {
-    FrontendConfig config;
-    config.min_tracked_matches = 60;
-    config.klt_anchor_half_px = anchor_half_px;
-    Frontend frontend(seq.calib, config);
-    std::map<std::uint64_t, Vec3> first_point_W;
-    double sum = 0;
-    int n = 0;
-    *resets = 0;
-    for (int k = 0; k < 12; ++k) {
-      const FrontendOutput out = frontend.process(seq.frame(k));
-      *resets += frontend.last_stats().anchor_rejected;
-      for (const StereoMatch& m : out.matches) {
-        if (k == 0) first_point_W.emplace(m.track_id, seq.point_W(k, m));
-        const auto it = first_point_W.find(m.track_id);
-        if (k < 11 || it == first_point_W.end()) continue;
-        Eigen::Vector2d px;
-        EXPECT_TRUE(frontend.rig().cam0.project(seq.T_W_C0(k).inverse() * it->second, &px));
-        sum += (px - m.left_px).norm();
-        ++n;
-      }
-    }
-    EXPECT_GT(n, 50);
-    return sum / std::max(n, 1);
-  };
-  int plain_resets = 0, anchored_resets = 0;
-  const double plain = mean_drift_px(0, &plain_resets);
-  const double anchored = mean_drift_px(7, &anchored_resets);
-  std::printf("mean drift of the 12-pair tracks: frame-to-frame KLT %.3f px, anchored %.3f px (%d tracks ended "
-              "by the anchoring)\n",
-              plain, anchored, anchored_resets);
-  EXPECT_EQ(plain_resets, 0);
-  EXPECT_LT(anchored, 0.8 * plain) << "plain " << plain << " px, anchored " << anchored << " px, "
-                                   << anchored_resets << " tracks ended by the anchoring";
-}
-
 TEST(Frontend, RejectsStereoAndTemporalOutliers) {
   const SyntheticSequence seq;
   const cv::Rect block(250, 150, 200, 160);

@@ -14,7 +14,7 @@ TEST(LidarConfig, LoadsOverridesAndKeepsDefaults) {
   std::ofstream(path) << "rings:\n  num_rings: 32\n  min_elevation_deg: -30.67\nfeatures:\n  sectors_per_ring: 8\n"
                          "map:\n  surfaces:\n    min_point_spacing_m: 0.5\nregistration:\n  loss: huber\n"
                          "  remap_degenerate_directions: true\n  num_neighbors: 6\n  tilt_prior_sigma_rad: 0.005\n"
-                         "  max_normal_angle_deg: 10\n  plane_through_nearest: true\n";
+                         "  max_normal_angle_deg: 10\n";
   const LidarConfig c = load_lidar_config(path);
   EXPECT_EQ(c.rings.num_rings, 32);
   EXPECT_DOUBLE_EQ(c.rings.min_elevation_deg, -30.67);
@@ -27,8 +27,6 @@ TEST(LidarConfig, LoadsOverridesAndKeepsDefaults) {
   EXPECT_EQ(c.registration.association.num_neighbors, 6);
   EXPECT_DOUBLE_EQ(c.registration.tilt_prior_sigma_rad, 0.005);
   EXPECT_DOUBLE_EQ(c.registration.association.max_normal_angle_deg, 10.0);
-  EXPECT_TRUE(c.registration.association.plane_through_nearest);
-  EXPECT_FALSE(LidarConfig{}.registration.association.plane_through_nearest);
   EXPECT_DOUBLE_EQ(LidarConfig{}.registration.association.max_normal_angle_deg, 0.0);  // off unless configured
 }
 

@@ -401,83 +401,24 @@ TEST(GlobalPoseGraph, WithTiltFinalOnlyTheCorrectionKeepsTheTiltAndTheFinalSolve
   EXPECT_LT(max_diff(final_only.trajectory(), corrected).max_m, 0.01);
 }
 
-// An out-and-back route (a tunnel's), level, whose odometry pitches 0.4 deg in its last 5 m (a registration's
-// wobble) and whose measured up directions come through a LiDAR mount 0.5 deg off in pitch. When the loop between
-// the ends corrects the route, uncorrected tilt factors pitch it by the mount's error (0.46 deg at most). With the mount's
-// tilt estimated from the rotations (tilt_offset), or in the correction itself (mount_tilt_sigma_rad: a pitched
-// route would descend along both legs, which the loop contradicts), its rms tilt stays below 0.1 deg, and the
-// correction's own estimate is the mount's error.
-TEST(GlobalPoseGraph, TheMountsTiltDoesNotBendAnOutAndBackRoute) {
-  const Vec3 mount_error_rad(0.0, 0.5 * M_PI / 180.0, 0.0);
-  const Mat3 mount_error = so3::exp(mount_error_rad);
-  const int leg = 200;  // 40 m each way
-  const int wobble_steps = 25;
-  const Quat wobble = so3::exp_quat(Vec3(0.0, 0.4 * M_PI / 180.0 / wobble_steps, 0.0));
-  enum class Mount { kIgnored, kTiltOffset, kInCorrection };
-  for (const Mount mount : {Mount::kIgnored, Mount::kTiltOffset, Mount::kInCorrection}) {
-    loop::GlobalPoseGraphConfig config;
-    config.tilt_offset = mount == Mount::kTiltOffset;
-    config.mount_tilt_sigma_rad = mount == Mount::kInCorrection ? 0.0175 : 0.0;
-    config.tilt_final_only = false;  // the tilt factors in the correction itself
-    loop::GlobalPoseGraph graph(config);
-    graph.add_first_pose(0, SE3());
-    for (int i = 1; i <= 2 * leg + 1; ++i) {
-      // Out along x, a turn on the spot, back along x.
-      const bool turn = i == leg + 1, wobbling = i > 2 * leg + 1 - wobble_steps;
-      const SE3 step = turn ? SE3(so3::exp_quat(Vec3(0, 0, M_PI)), Vec3::Zero())
-                            : SE3(wobbling ? wobble : Quat::Identity(), Vec3(0.2, 0, 0));
-      graph.add_odometry(i * 100'000'000LL, step);
-      // The truth is level: the VIO's up is e_z in L, seen through the mount.
-      graph.set_up_direction(graph.size() - 1, mount_error.transpose() * Vec3::UnitZ());
-    }
-    graph.set_up_direction(0, mount_error.transpose() * Vec3::UnitZ());
-    // The loop between the ends: back at the start, turned around.
-    graph.add_loop(0, graph.size() - 1, SE3(so3::exp_quat(Vec3(0, 0, M_PI)), Vec3::Zero()),
-                   loop::information_from_sigmas(0.01, 0.001));
-    const loop::CorrectionSummary summary = graph.optimize();
-    double max_height_m = 0.0, sum_sq_tilt_deg = 0.0;
-    for (std::size_t i = 0; i < graph.size(); ++i) {
-      max_height_m = std::max(max_height_m, std::abs(graph.pose(i).translation().z()));
-      const Vec3 up_L = graph.pose(i).rotation().transpose() * Vec3::UnitZ();
-      sum_sq_tilt_deg += std::pow(std::acos(std::clamp(up_L.z(), -1.0, 1.0)) * 180.0 / M_PI, 2);
-    }
-    const double rms_tilt_deg = std::sqrt(sum_sq_tilt_deg / static_cast<double>(graph.size()));
-    const Vec3 eps_deg = summary.up_rotation_L.value_or(Vec3::Zero()) * 180.0 / M_PI;
-    std::printf("mount %d: largest height %.4f m, rms tilt %.3f deg, estimated mount (%.3f %.3f %.3f) deg\n",
-                static_cast<int>(mount), max_height_m, rms_tilt_deg, eps_deg.x(), eps_deg.y(), eps_deg.z());
-    if (mount == Mount::kIgnored) {
-      EXPECT_GT(rms_tilt_deg, 0.3);
-    } else {
-      EXPECT_LT(rms_tilt_deg, 0.1);
-    }
-    if (mount == Mount::kInCorrection) {
-      ASSERT_TRUE(summary.up_rotation_L);
-      EXPECT_LT((*summary.up_rotation_L - mount_error_rad).norm(), 0.1 * M_PI / 180.0);
-    } else {
-      EXPECT_FALSE(summary.up_rotation_L);
-    }
-  }
-}
-
-// Why a pitched mount shortens a corridor (docs/pose_graph.md, "The mount's tilt estimated in the graph"): the same
-// out-and-back route, every straight step degenerate along its axis (a corridor). Tilt factors that hold a pose 0.5 deg
+// Why a pitched mount shortens a corridor (docs/pose_graph.md, "Length and bearing of a step"): an out-and-back route,
+// level, 40 m each way, its measured up directions through a LiDAR mount 0.5 deg off in pitch, every straight step
+// degenerate along its axis (a corridor). Tilt factors that hold a pose 0.5 deg
 // off the odometry's pitch leave each level step a vertical residual |t| sin(0.5 deg), and shortening the step shrinks
 // it; along a degenerate axis length costs (0.01^2 + 0.1^2) / 0.01^2 = 101 times less, and both legs shrink alike, so
-// the loop between the ends does not see it. Without the added sigma, with the mount's tilt estimated in the
-// correction, or with the steps compared as length and bearing (bearing_min_step_m), the legs keep their length.
-TEST(GlobalPoseGraph, APitchAgainstTheOdometryShortensDegenerateLegsUnlessTheMountIsEstimated) {
+// the loop between the ends does not see it. Without the added sigma, or with the steps compared as length and
+// bearing (bearing_min_step_m), the legs keep their length.
+TEST(GlobalPoseGraph, APitchAgainstTheOdometryShortensDegenerateLegs) {
   const Mat3 mount_error = so3::exp(Vec3(0.0, 0.5 * M_PI / 180.0, 0.0));
   const int leg = 200;  // 40 m each way
   const Vec6 along_x = (Vec6() << 1, 0, 0, 0, 0, 0).finished();
   struct Case {
     double degenerate_sigma;
-    double mount_tilt_sigma_rad;
     double bearing_min_step_m;
   };
-  for (const Case c : {Case{0.1, 0.0, 0.0}, Case{0.0, 0.0, 0.0}, Case{0.1, 0.0175, 0.0}, Case{0.1, 0.0, 0.05}}) {
+  for (const Case c : {Case{0.1, 0.0}, Case{0.0, 0.0}, Case{0.1, 0.05}}) {
     loop::GlobalPoseGraphConfig config;
     config.degenerate_sigma = c.degenerate_sigma;
-    config.mount_tilt_sigma_rad = c.mount_tilt_sigma_rad;
     config.bearing_min_step_m = c.bearing_min_step_m;
     config.tilt_final_only = false;  // the tilt factors in the correction itself
     loop::GlobalPoseGraph graph(config);
@@ -495,9 +436,9 @@ TEST(GlobalPoseGraph, APitchAgainstTheOdometryShortensDegenerateLegsUnlessTheMou
     graph.optimize();
     const double out_m = graph.pose(leg).translation().x() - graph.pose(0).translation().x();
     const double back_m = graph.pose(leg + 1).translation().x() - graph.pose(2 * leg + 1).translation().x();
-    std::printf("degenerate sigma %.2f, mount sigma %.4f, bearing from %.2f m: legs %.4f and %.4f m off\n",
-                c.degenerate_sigma, c.mount_tilt_sigma_rad, c.bearing_min_step_m, out_m - 0.2 * leg, back_m - 0.2 * leg);
-    if (c.degenerate_sigma > 0.0 && c.mount_tilt_sigma_rad == 0.0 && c.bearing_min_step_m == 0.0) {
+    std::printf("degenerate sigma %.2f, bearing from %.2f m: legs %.4f and %.4f m off\n", c.degenerate_sigma,
+                c.bearing_min_step_m, out_m - 0.2 * leg, back_m - 0.2 * leg);
+    if (c.degenerate_sigma > 0.0 && c.bearing_min_step_m == 0.0) {
       EXPECT_LT(out_m - 0.2 * leg, -0.1);
       EXPECT_LT(back_m - 0.2 * leg, -0.1);
     } else {

@@ -128,15 +128,13 @@ TEST(LoopCloser, RevisitIsMergedIntoTheKeyFrameItLoopsTo) {
   }
 }
 
-TEST(LoopCloser, SubmapOfNeighbouringKeyScans) {
-  // Key frames 1.2 m before and after A; with submap_half_width 1 the candidate's map holds all three scans,
-  // placed by the graph poses.
+TEST(LoopCloser, PathLengthRunsThroughTheKeyFramesBetween) {
+  // Key frames 1.2 m before and after A: the odometry check's path from the candidate to the query goes through
+  // every key frame between them.
   const SE3 before = pose_A() * SE3(Mat3::Identity(), Vec3(-1.2, 0, 0));
   const SE3 after = pose_A() * SE3(so3::exp(Vec3(0, 0, -10 * kDeg)), Vec3(1.2, -0.3, 0));
   const std::vector<SE3> poses = {before, pose_A(), after, pose_B()};
-  LoopClosureConfig config;
-  config.submap_half_width = 1;
-  LoopCloser closer(config, lidar::LidarConfig{}, scene().vocabulary);
+  LoopCloser closer(LoopClosureConfig{}, lidar::LidarConfig{}, scene().vocabulary);
   closer.add_and_detect(scene().key_frame(before, s_to_ns(80.0), 0, 41), graph_poses(poses));
   closer.add_and_detect(at_time(key_frame_A(), 100.0, 1), graph_poses(poses));
   closer.add_and_detect(scene().key_frame(after, s_to_ns(120.0), 2, 51), graph_poses(poses));
@@ -145,16 +143,6 @@ TEST(LoopCloser, SubmapOfNeighbouringKeyScans) {
   ASSERT_FALSE(records.empty());
   const LoopCandidateRecord& r = records.back();
   ASSERT_TRUE(r.accepted()) << "rejected by " << r.rejected_by;
-  const SE3 T_Lu_Lv_true = scene().T_W_L(poses.at(r.candidate_pose_index)).inverse() * scene().T_W_L(pose_B());
-  const PoseDifference epnp = pose_difference(T_Lu_Lv_true, r.T_Lu_Lv_epnp);
-  const PoseDifference icp = pose_difference(T_Lu_Lv_true, r.T_Lu_Lv);
-  std::cout << "submap (candidate key frame " << r.candidate_key_frame << " of 3): ICP matched "
-            << r.icp_matched_fraction << ", inliers " << r.icp_inlier_fraction << "; error EPnP "
-            << epnp.translation_m * 100 << " cm / " << epnp.rotation_rad / kDeg << " deg, EPnP + ICP "
-            << icp.translation_m * 100 << " cm / " << icp.rotation_rad / kDeg << " deg\n";
-  EXPECT_LT(icp.translation_m, 0.03);
-  EXPECT_LT(icp.rotation_rad, 0.2 * kDeg);
-  // Path through the key frames from the candidate to the query.
   const auto p_W = [&](std::size_t i) { return scene().T_W_L(poses[i]).translation(); };
   double path_m = 0;
   for (std::size_t i = r.candidate_pose_index; i < 3; ++i) path_m += (p_W(i + 1) - p_W(i)).norm();

@@ -33,7 +33,6 @@ TEST(LoopClosureConfig, DefaultsAreValidAndEveryFieldRoundTrips) {
   c.pnp_reprojection_px = 2.5;
   c.pnp_ransac_iterations = 300;
   c.pnp_ransac_seed = 7;
-  c.submap_half_width = 2;
   c.icp_map_point_spacing_m = 0.08;
   c.icp_source_leaf_m = 0.15;
   c.icp_min_matched_fraction = 0.45;
@@ -68,11 +67,11 @@ TEST(LoopClosureConfig, DefaultsAreValidAndEveryFieldRoundTrips) {
 }
 
 TEST(LoopClosureConfig, KeysOverrideDefaults) {
-  const LoopClosureConfig c = read("min_time_gap_s: 20\nkey_frames: {min_translation_m: 0.5}\nsubmap_half_width: 1\n");
+  const LoopClosureConfig c = read("min_time_gap_s: 20\nkey_frames: {min_translation_m: 0.5}\nicp_num_neighbors: 9\n");
   EXPECT_EQ(c.min_time_gap_s, 20.0);
   EXPECT_EQ(c.key_frames.min_translation_m, 0.5);
   EXPECT_EQ(c.key_frames.min_rotation_rad, LoopClosureConfig{}.key_frames.min_rotation_rad);
-  EXPECT_EQ(c.submap_half_width, 1);
+  EXPECT_EQ(c.icp_num_neighbors, 9);
 }
 
 TEST(LoopClosureConfig, BadValuesAndUnknownKeysAreInputErrors) {
@@ -83,7 +82,6 @@ TEST(LoopClosureConfig, BadValuesAndUnknownKeysAreInputErrors) {
                                  "min_descriptor_matches: 2",
                                  "pnp_reprojection_px: 0",
                                  "pnp_ransac_iterations: 0",
-                                 "submap_half_width: -1",
                                  "icp_min_inlier_fraction: 1.2",
                                  "icp_min_matched_fraction: -0.1",
                                  "icp_max_rms_m: 0",

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <limits>
 #include <stdexcept>
 
 #include "loop/pose_graph.h"
@@ -140,8 +139,6 @@ TEST(PoseGraph, RejectsBadConstraints) {
   EXPECT_THROW(graph.add_constraint(c), std::invalid_argument);
   EXPECT_THROW(loop::information_from_sigmas(0.0, 0.1), std::invalid_argument);
   EXPECT_THROW(graph.add_tilt({2, Vec3::UnitZ(), 0.01}), std::invalid_argument);
-  EXPECT_THROW(graph.estimate_up_rotation(0.0), std::invalid_argument);
-  EXPECT_THROW(graph.estimate_up_rotation(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
   EXPECT_TRUE(graph.constraints().empty());
 }
 

@@ -47,7 +47,7 @@ TEST(RunConfig, SectionsReachTheirModulesAndMissingOnesKeepDefaults) {
   const OfflineRunConfig c = load_run_config(write_file(
       "frontend:\n  max_corners: 300\n  cross_check: false\nvio:\n  smoother:\n    window_size: 6\n"
       "lidar_mapper:\n  features:\n    half_window: 4\n  registration:\n    loss: huber\n  mapper:\n    dewarp: false\n"
-      "loop_closure:\n  graph:\n    mount_tilt_sigma_rad: 0.02\n    bearing_min_step_m: 0.05\n"
+      "loop_closure:\n  graph:\n    degenerate_sigma: 0.02\n    bearing_min_step_m: 0.05\n"
       "    tilt_final_only: false\n"));
   EXPECT_EQ(c.frontend.max_corners, 300);
   EXPECT_FALSE(c.frontend.cross_check);
@@ -55,7 +55,7 @@ TEST(RunConfig, SectionsReachTheirModulesAndMissingOnesKeepDefaults) {
   EXPECT_EQ(c.lidar.lidar.features.half_window, 4);
   EXPECT_EQ(c.lidar.lidar.registration.loss, lidar::RobustLoss::kHuber);
   EXPECT_FALSE(c.lidar.dewarp);
-  EXPECT_EQ(c.graph.mount_tilt_sigma_rad, 0.02);
+  EXPECT_EQ(c.graph.degenerate_sigma, 0.02);
   EXPECT_EQ(c.graph.bearing_min_step_m, 0.05);
   EXPECT_FALSE(c.graph.tilt_final_only);
   // Keys left out keep the mapper's defaults (not those of a bare LidarConfig).
@@ -70,7 +70,7 @@ TEST(RunConfig, SectionsReachTheirModulesAndMissingOnesKeepDefaults) {
   expected.lidar.lidar.features.half_window = 4;
   expected.lidar.lidar.registration.loss = lidar::RobustLoss::kHuber;
   expected.lidar.dewarp = false;
-  expected.graph.mount_tilt_sigma_rad = 0.02;
+  expected.graph.degenerate_sigma = 0.02;
   expected.graph.bearing_min_step_m = 0.05;
   expected.graph.tilt_final_only = false;
   EXPECT_EQ(run_config_yaml(c), run_config_yaml(expected));
@@ -91,8 +91,7 @@ TEST(RunConfig, BadFilesNameTheFileAndTheKey) {
       {"lidar_mapper:\n  registration:\n    loss: l2\n", "lidar_mapper.registration.loss"},
       {"lidar_mapper:\n  registration:\n    tilt_prior_sigma_rad: -0.01\n", "tilt_prior_sigma_rad"},
       {"lidar_mapper:\n  mapper:\n    dewrap: true\n", "lidar_mapper.mapper.dewrap"},
-      {"loop_closure:\n  graph:\n    mount_tilt_sigma_rad: -0.01\n", "mount_tilt_sigma_rad"},
-      {"loop_closure:\n  graph:\n    mount_tilt_sigma_rad: .inf\n", "mount_tilt_sigma_rad"},
+      {"loop_closure:\n  graph:\n    degenerate_sigma: -0.01\n", "degenerate_sigma"},
       {"loop_closure:\n  graph:\n    bearing_min_step_m: -0.05\n", "bearing_min_step_m"},
       {"vio: [1, 2]\n", "'vio'"},
       {"- 1\n- 2\n", "map"},

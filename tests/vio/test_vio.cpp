@@ -102,39 +102,6 @@ TEST(Vio, InitializesStaticAndTracksTheMotion) {
   EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
 }
 
-// Before the rig has turned, the VIO's tilt is entangled with the accelerometer bias: the published tilt sigma is
-// at least VioConfig::unturned_tilt_sigma_rad until the heading has changed by tilt_turn_rad, then the window's own.
-TEST(Vio, TiltSigmaIsFlooredUntilTheRigHasTurned) {
-  test::AnalyticMotion motion;
-  motion.rest_s = 1.0;
-  VioConfig config;
-  config.unturned_tilt_sigma_rad = 0.035;
-  const VioConfig no_floor;  // the default: off
-  const AnalyticFlight f = fly_analytic_motion(motion, {}, config);
-  const AnalyticFlight g = fly_analytic_motion(motion, {}, no_floor);
-  ASSERT_EQ(f.imu_poses.size(), g.imu_poses.size());
-  double t_turn_s = motion.rest_s;  // the true heading (yaw from the start) reaches tilt_turn_rad
-  while (so3::yaw_rad(motion.state(t_turn_s).R_W_I) < config.tilt_turn_rad) t_turn_s += 1e-3;
-  int before = 0, after = 0;
-  for (std::size_t i = 0; i < f.imu_poses.size(); ++i) {
-    const double t_s = ns_to_s(f.imu_poses[i].t_ns);
-    const double sigma = f.imu_poses[i].tilt_sigma_rad, own = g.imu_poses[i].tilt_sigma_rad;
-    if (t_s < t_turn_s - 0.2) {
-      EXPECT_GE(sigma, config.unturned_tilt_sigma_rad) << t_s;
-      EXPECT_LT(own, config.unturned_tilt_sigma_rad) << t_s;  // the floor is what sets it
-      ++before;
-    } else if (t_s > t_turn_s + 0.2) {
-      EXPECT_EQ(sigma, own) << t_s;
-      ++after;
-    }
-  }
-  std::printf("heading turned by %.0f deg at %.2f s: %d IMU-rate poses floored before, %d after with the window's sigma "
-              "(last %.4f rad)\n", config.tilt_turn_rad * 180 / M_PI, t_turn_s, before, after,
-              f.imu_poses.back().tilt_sigma_rad);
-  EXPECT_GT(before, 300);
-  EXPECT_GT(after, 50);
-}
-
 // T_W_I jumps where each new state re-anchors the propagation; T_O_I must follow the true motion from
 // sample to sample without those jumps (LiDAR sweeps are dewarped with it).
 TEST(Vio, JumpFreeImuMotionFollowsTheTrueMotion) {

@@ -53,8 +53,6 @@ prior_velocity_sigma_m_s: 0.1
 moving_velocity_sigma_m_s: 2.0
 prior_gyro_bias_sigma_rad_s: 0.005
 prior_accel_bias_sigma_m_s2: 0.3
-unturned_tilt_sigma_rad: 0.05
-tilt_turn_rad: 0.8
 )";
 
 VioConfig read(const std::string& text) {
@@ -115,8 +113,6 @@ TEST(VioConfigYaml, ReadsEveryKey) {
   EXPECT_EQ(c.moving_velocity_sigma_m_s, 2.0);
   EXPECT_EQ(c.prior_gyro_bias_sigma_rad_s, 0.005);
   EXPECT_EQ(c.prior_accel_bias_sigma_m_s2, 0.3);
-  EXPECT_EQ(c.unturned_tilt_sigma_rad, 0.05);
-  EXPECT_EQ(c.tilt_turn_rad, 0.8);
   // Written back, every value reads again to the same config.
   EXPECT_EQ(dump(read(dump(c))), dump(c));
 }
@@ -154,9 +150,6 @@ TEST(VioConfigYaml, BadValuesNameTheKey) {
       {"loss:\n  max_cost_per_landmark: 0\n", "loss.max_cost_per_landmark"},
       {"loss:\n  max_speed_m_s: -1\n", "loss.max_speed_m_s"},
       {"prior_position_sigma_m: 0\n", "prior_position_sigma_m"},
-      {"unturned_tilt_sigma_rad: -0.01\n", "unturned_tilt_sigma_rad"},
-      {"tilt_turn_rad: 4\n", "tilt_turn_rad"},
-      {"tilt_turn_rad: .nan\n", "tilt_turn_rad"},
       {"window_size: 4\n", "window_size"},
   };
   for (const auto& [text, key] : cases) {
