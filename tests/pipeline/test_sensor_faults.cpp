@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "common/time.h"
+#include "status_csv.h"
 #include "test_util.h"
 
 namespace vilslam {
@@ -37,17 +38,8 @@ struct CsvRow {
 };
 
 std::vector<CsvRow> read_status_csv(const fs::path& file) {
-  std::ifstream in(file);
-  std::string line;
-  std::getline(in, line);  // header
   std::vector<CsvRow> rows;
-  while (std::getline(in, line)) {
-    CsvRow row;
-    std::stringstream cells(line);
-    for (std::string cell; std::getline(cells, cell, ',');) row.cells.push_back(cell);
-    row.t_s = ns_to_s(std::stoll(row.cells.at(0))) - kSequenceStartS;
-    rows.push_back(row);
-  }
+  for (test::StatusRow& r : test::read_status_rows(file)) rows.push_back({ns_to_s(r.t_ns) - kSequenceStartS, std::move(r.cells)});
   return rows;
 }
 

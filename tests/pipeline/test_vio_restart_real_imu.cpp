@@ -16,6 +16,7 @@
 
 #include "eval/trajectory_eval.h"
 #include "io/trajectory_io.h"
+#include "status_csv.h"
 #include "test_util.h"
 
 namespace vilslam {
@@ -46,26 +47,6 @@ std::string slice_lines(const std::string& path, double begin_s, double end_s, b
     if (t_s - *origin_s >= begin_s && t_s - *origin_s < end_s) out += line + '\n';
   }
   return out;
-}
-
-struct StatusRow {
-  TimeNs t_ns = 0;
-  std::string status;
-};
-
-std::vector<StatusRow> read_vio_status(const fs::path& file) {
-  std::ifstream in(file);
-  std::string line;
-  std::getline(in, line);  // header
-  std::vector<StatusRow> rows;
-  while (std::getline(in, line)) {
-    std::stringstream cells(line);
-    std::string t, status;
-    std::getline(cells, t, ',');
-    std::getline(cells, status, ',');
-    rows.push_back({std::stoll(t), status});
-  }
-  return rows;
 }
 
 // Ground-truth speed at t_ns (central difference over 0.1 s).
@@ -102,14 +83,15 @@ TEST(VioRestartRealImu, ALossAtTwoMetresASecondIsFollowedByPosesWithinTwoSeconds
 
   const Trajectory truth = read_trajectory((dir / "data" / "groundtruth.tum").string(), TrajectoryFormat::kTum);
   const TimeNs start_ns = truth.front().t_ns;
-  std::vector<StatusRow> lost, restarted;
+  std::vector<test::StatusRow> lost, restarted;
   std::size_t tracking_after = 0, states_after = 0;  // from the restarted state on
-  for (const StatusRow& r : read_vio_status(dir / "run" / "vio_status.csv")) {
-    if (r.status.rfind("lost_", 0) == 0) lost.push_back(r);
-    if (r.status == "restarted") restarted.push_back(r);
+  for (const test::StatusRow& r : test::read_status_rows(dir / "run" / "vio_status.csv")) {
+    const std::string& status = r.cells.at(1);
+    if (status.rfind("lost_", 0) == 0) lost.push_back(r);
+    if (status == "restarted") restarted.push_back(r);
     if (!restarted.empty()) {
       ++states_after;
-      if (r.status == "tracking" || r.status == "imu_gap") ++tracking_after;
+      if (status == "tracking" || status == "imu_gap") ++tracking_after;
     }
   }
   ASSERT_EQ(lost.size(), 1u) << run.output;
